@@ -1,0 +1,49 @@
+// Axis-aligned boxes: Bounds3 in double for building, and the float box that BVH nodes store.
+#pragma once
+
+#include "math.h"
+
+namespace glint {
+
+struct Bounds3 {
+    Vec3 lo{kInfinity};
+    Vec3 hi{-kInfinity};
+
+    void extend(const Vec3& p) { lo = min(lo, p); hi = max(hi, p); }
+    void extend(const Bounds3& b) { lo = min(lo, b.lo); hi = max(hi, b.hi); }
+    bool empty() const { return lo.x > hi.x; }
+    Vec3 extent() const { return hi - lo; }
+    Vec3 centre() const { return (lo + hi) * 0.5; }
+    double half_area() const {
+        if (empty()) return 0;
+        const Vec3 e = extent();
+        return e.x * e.y + e.y * e.z + e.z * e.x;
+    }
+};
+
+// Rounds a double box outward to float, so the stored box always contains the exact one.
+struct FloatBox {
+    float lo[3];
+    float hi[3];
+
+    static FloatBox enclosing(const Bounds3& b) {
+        FloatBox f{};
+        for (int a = 0; a < 3; ++a) {
+            f.lo[a] = round_down(b.lo[a]);
+            f.hi[a] = round_up(b.hi[a]);
+        }
+        return f;
+    }
+
+private:
+    static float round_down(double v) {
+        const float f = static_cast<float>(v);
+        return static_cast<double>(f) > v ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+    }
+    static float round_up(double v) {
+        const float f = static_cast<float>(v);
+        return static_cast<double>(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+    }
+};
+
+}  // namespace glint

@@ -1,0 +1,35 @@
+// A perspective camera with smallpt's conventions: rays start `near` units from the eye along
+// their own direction (smallpt's camera stands behind its front wall and starts rays 140 units
+// out), and an optional thin lens for depth of field.
+#pragma once
+
+#include "ray.h"
+
+namespace glint {
+
+struct CameraSettings {
+    Vec3 position{0, 0, 0};
+    Vec3 direction{0, 0, -1};  // unit; a look-at point is turned into this by the scene loader
+    Vec3 up{0, 1, 0};
+    double fov_degrees = 40;    // vertical
+    double near = 0;
+    double aperture = 0;        // lens radius; 0 is a pinhole
+    double focus_distance = 1;  // along the view direction
+};
+
+class Camera {
+public:
+    Camera() = default;
+    Camera(const CameraSettings& settings, int width, int height);
+
+    // A ray through film position (fx, fy) in pixels, fx from the left edge, fy from the
+    // bottom edge (smallpt's orientation); (u1, u2) pick the point on the lens.
+    Ray generate(double fx, double fy, double u1, double u2) const;
+
+private:
+    CameraSettings settings_;
+    Vec3 right_, up_;  // scaled so the film spans [-0.5, 0.5] of each at unit distance
+    int width_ = 1, height_ = 1;
+};
+
+}  // namespace glint

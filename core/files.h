@@ -1,0 +1,20 @@
+// Whole-file reads with a size bound, and writes that never leave half a file behind.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+struct FileError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Writes through a temporary file and a rename, so a reader never sees half a file.
+void write_file(const std::string& path, const std::vector<uint8_t>& bytes);
+// Throws FileError if the file is missing, unreadable or larger than max_bytes.
+std::vector<uint8_t> read_file(const std::string& path, size_t max_bytes);
+
+}  // namespace glint

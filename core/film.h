@@ -1,0 +1,51 @@
+// Per-pixel accumulation: the sum and the sum of squares of the sample values and their count,
+// so the mean image and an estimate of its error are available at any moment.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "image.h"
+
+namespace glint {
+
+struct PixelSums {
+    Rgb sum{0}, sum_sq{0};
+    uint64_t count = 0;
+    uint64_t dropped = 0;  // samples that came out NaN or infinite and were left out
+};
+
+class Film {
+public:
+    Film(int width, int height) : width_(width), height_(height), pixels_(size_t(width) * height) {}
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+    // Adds one sample to pixel (x, y) (y = 0 is the top row). A sample with a NaN or infinite
+    // component is dropped and counted instead: it would poison the pixel forever.
+    void add(int x, int y, const Rgb& value) {
+        PixelSums& px = pixels_[size_t(y) * width_ + x];
+        if (!is_finite(value)) {
+            ++px.dropped;
+            return;
+        }
+        px.sum += value;
+        px.sum_sq += value * value;
+        ++px.count;
+    }
+    const PixelSums& pixel(int x, int y) const { return pixels_[size_t(y) * width_ + x]; }
+
+    // The mean of each pixel's samples (0 where it has none yet).
+    Image mean() const;
+    // Estimated RMSE of mean() against the converged image, in the image's own (linear) units:
+    // sqrt of the average over pixels and channels of the sample variance divided by the count.
+    double error_estimate() const;
+    uint64_t dropped() const;
+
+private:
+    int width_, height_;
+    std::vector<PixelSums> pixels_;
+};
+
+}  // namespace glint

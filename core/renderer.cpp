@@ -1,0 +1,102 @@
+#include "renderer.h"
+
+#include "sampling.h"
+
+namespace glint {
+
+const char* to_string(StopReason reason) {
+    switch (reason) {
+        case StopReason::completed: return "completed";
+        case StopReason::target_error: return "target error reached";
+        case StopReason::time_limit: return "time limit reached";
+        case StopReason::cancelled: return "cancelled";
+    }
+    return "?";
+}
+
+RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& settings)
+    : scene_(std::move(scene)),
+      settings_(settings),
+      camera_(scene_->camera(), settings.width, settings.height),
+      tracer_(*scene_),
+      film_(settings.width, settings.height),
+      tiles_x_((settings.width + kTileSize - 1) / kTileSize),
+      tiles_y_((settings.height + kTileSize - 1) / kTileSize) {
+    const uint32_t round = samples_per_round(settings_.filter);
+    settings_.spp = std::max(round, (settings_.spp + round - 1) / round * round);
+}
+
+Rgb RenderJob::sample(int x, int y, uint32_t index) const {
+    Rng rng(settings_.seed, uint64_t(y) * settings_.width + x, index);
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    const double row_from_bottom = settings_.height - 1 - y;
+    double fx, fy;
+    if (settings_.filter == Filter::tent) {
+        const uint32_t sub = index % 4;  // smallpt's subpixel (sx, sy) = (sub mod 2, sub / 2)
+        fx = x + ((sub & 1) + 0.5 + sample_tent(u1)) / 2;
+        fy = row_from_bottom + ((sub >> 1) + 0.5 + sample_tent(u2)) / 2;
+    } else {
+        fx = x + u1;
+        fy = row_from_bottom + u2;
+    }
+    const double lens1 = rng.uniform(), lens2 = rng.uniform();
+    return tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng);
+}
+
+bool RenderJob::should_stop() const { return cancelled_ || Clock::now() >= deadline_; }
+
+void RenderJob::render_tile(size_t tile, uint32_t first, uint32_t last) {
+    if (should_stop()) return;
+    const int x0 = int(tile % tiles_x_) * kTileSize, y0 = int(tile / tiles_x_) * kTileSize;
+    const int x1 = std::min(x0 + kTileSize, settings_.width), y1 = std::min(y0 + kTileSize, settings_.height);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
+            for (uint32_t s = first; s < last; ++s) film_.add(x, y, sample(x, y, s));
+}
+
+void RenderJob::render_pass(ThreadPool& pool, uint32_t first, uint32_t last) {
+    pool.parallel_for(size_t(tiles_x_) * tiles_y_, [&](size_t tile) { render_tile(tile, first, last); });
+}
+
+Progress RenderJob::progress() const {
+    Progress p;
+    p.spp_done = spp_done_;
+    p.spp_target = settings_.spp;
+    p.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+    p.samples_per_second = p.seconds > 0 ? double(spp_done_) * settings_.width * settings_.height / p.seconds : 0;
+    p.error_estimate = film_.error_estimate();
+    p.dropped = film_.dropped();
+    return p;
+}
+
+// Passes start at one round of samples, so a first image comes at once, and grow towards about
+// half a second each (at most doubling), so progress stays visible without per-pass overhead.
+uint32_t RenderJob::next_pass_size(uint32_t previous) const {
+    const uint32_t round = samples_per_round(settings_.filter);
+    const double seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+    const double per_sample = seconds / std::max<double>(1, spp_done_);
+    const double wanted = std::min<double>(2.0 * previous, 0.5 / std::max(per_sample, 1e-9));
+    const uint32_t size = std::max(round, uint32_t(wanted) / round * round);
+    return std::min(size, settings_.spp - spp_done_);
+}
+
+StopReason RenderJob::run(ThreadPool& pool, const std::function<void(const Progress&)>& on_pass) {
+    start_ = Clock::now();
+    if (settings_.time_limit > 0)
+        deadline_ = start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(settings_.time_limit));
+    uint32_t pass = samples_per_round(settings_.filter);
+    while (spp_done_ < settings_.spp) {
+        render_pass(pool, spp_done_, spp_done_ + pass);
+        if (should_stop()) break;  // the pass may be incomplete: its samples count per pixel
+        spp_done_ += pass;
+        const Progress p = progress();
+        if (on_pass) on_pass(p);
+        if (settings_.target_error > 0 && p.error_estimate <= settings_.target_error) return StopReason::target_error;
+        if (spp_done_ < settings_.spp) pass = next_pass_size(pass);
+    }
+    if (cancelled_) return StopReason::cancelled;
+    if (spp_done_ < settings_.spp) return StopReason::time_limit;
+    return StopReason::completed;
+}
+
+}  // namespace glint

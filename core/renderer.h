@@ -1,0 +1,83 @@
+// Progressive rendering: a job renders its image in passes of whole samples per pixel on a
+// shared thread pool, reporting after each pass, until it reaches its sample count, its target
+// error estimate or its time limit, or is cancelled.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+
+#include "camera.h"
+#include "film.h"
+#include "image_io.h"
+#include "integrator.h"
+#include "thread_pool.h"
+
+namespace glint {
+
+// tent: smallpt's 2×2 subpixels with tent-distributed offsets; sample s goes to subpixel s mod 4,
+// so sample counts are whole multiples of 4. box: uniform over the pixel.
+enum class Filter { tent, box };
+
+inline uint32_t samples_per_round(Filter f) { return f == Filter::tent ? 4 : 1; }
+
+struct RenderSettings {
+    int width = 1024, height = 768;
+    uint32_t spp = 64;  // rounded up to a multiple of samples_per_round(filter)
+    Filter filter = Filter::tent;
+    uint64_t seed = 0;
+    Encoding encoding = Encoding::gamma22;
+    double target_error = 0;  // stop once error_estimate() <= this; 0 = off
+    double time_limit = 0;    // seconds; 0 = off
+};
+
+struct Progress {
+    uint32_t spp_done = 0;  // samples every pixel has
+    uint32_t spp_target = 0;
+    double seconds = 0;
+    double samples_per_second = 0;
+    double error_estimate = kInfinity;
+    uint64_t dropped = 0;  // non-finite samples left out
+};
+
+enum class StopReason { completed, target_error, time_limit, cancelled };
+const char* to_string(StopReason reason);
+
+class RenderJob {
+public:
+    RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& settings);
+
+    // Renders until a stop condition, calling on_pass after every pass (from this thread).
+    StopReason run(ThreadPool& pool, const std::function<void(const Progress&)>& on_pass = {});
+    // Thread-safe: the pass in progress stops after the tiles already being rendered.
+    void cancel() { cancelled_ = true; }
+
+    // Samples [first, last) of every pixel, added to the film in sample order.
+    void render_pass(ThreadPool& pool, uint32_t first, uint32_t last);
+
+    const Film& film() const { return film_; }
+    const RenderSettings& settings() const { return settings_; }
+    Progress progress() const;
+
+private:
+    using Clock = std::chrono::steady_clock;
+    static constexpr int kTileSize = 16;
+
+    Rgb sample(int x, int y, uint32_t index) const;
+    void render_tile(size_t tile, uint32_t first, uint32_t last);
+    bool should_stop() const;
+    uint32_t next_pass_size(uint32_t previous) const;
+
+    std::shared_ptr<const Scene> scene_;
+    RenderSettings settings_;
+    Camera camera_;
+    PathTracer tracer_;
+    Film film_;
+    int tiles_x_, tiles_y_;
+    uint32_t spp_done_ = 0;
+    std::atomic<bool> cancelled_{false};
+    Clock::time_point start_{}, deadline_ = Clock::time_point::max();
+};
+
+}  // namespace glint

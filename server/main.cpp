@@ -1,0 +1,18 @@
+// glint: a Monte-Carlo path tracer as a batch command (and, to come, a render service).
+#include <cstdio>
+#include <map>
+
+#include "commands.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"glint: a path-tracing renderer"};
+    app.require_subcommand(1);
+    const std::map<std::string, std::function<int()>> commands = {
+        {"render", glint::add_render_command(app)},
+        {"trace-rays", glint::add_trace_rays_command(app)},
+    };
+    CLI11_PARSE(app, argc, argv);
+    for (const auto& [name, run] : commands)
+        if (app.got_subcommand(name)) return run();
+    return 2;
+}
