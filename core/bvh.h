@@ -23,28 +23,24 @@ static_assert(sizeof(BvhNode) == 32);
 
 // Slab test of Williams et al. made robust as Ize ("Robust BVH ray traversal", JCGT 2013) does:
 // far distances are scaled by 1 + 2·gamma(3) so that rounding never rejects a box the exact
-// test would accept; zero direction components get a huge finite inverse, so a ray starting
-// on a slab plane yields 0·huge = 0 instead of 0·inf = NaN.
+// test would accept. A zero direction component gives an infinite inverse; a ray lying in a
+// slab's plane then yields 0·inf = NaN, and the comparisons below are ordered so that a NaN
+// never narrows the interval (the ray is inside that slab for every t).
 class RayBoxTest {
 public:
-    explicit RayBoxTest(const Ray& ray) : o_(ray.o) {
-        for (int a = 0; a < 3; ++a) {
-            const double d = ray.d[a];
-            inv_[a] = std::fabs(d) > std::numeric_limits<double>::min()
-                          ? 1.0 / d
-                          : std::copysign(std::numeric_limits<double>::max(), d);
-        }
+    explicit RayBoxTest(const Ray& ray) : o_(ray.o), inv_(1.0 / ray.d.x, 1.0 / ray.d.y, 1.0 / ray.d.z) {
+        // The near plane of each slab is picked by the sign bit (so -0 counts as negative):
+        // then a NaN can only come from a ray lying in a plane, never turn +inf into a near t.
+        for (int a = 0; a < 3; ++a) negative_[a] = std::signbit(inv_[a]);
     }
     // Entry distance in `entry` when the box overlaps (tmin, tmax].
     bool hit(const FloatBox& box, double tmin, double tmax, double& entry) const {
         constexpr double pad = 1 + 2 * gamma(3);
         for (int a = 0; a < 3; ++a) {
-            double t0 = (static_cast<double>(box.lo[a]) - o_[a]) * inv_[a];
-            double t1 = (static_cast<double>(box.hi[a]) - o_[a]) * inv_[a];
-            if (t0 > t1) std::swap(t0, t1);
-            t1 *= pad;
-            tmin = t0 > tmin ? t0 : tmin;
-            tmax = t1 < tmax ? t1 : tmax;
+            const double t_near = (double(negative_[a] ? box.hi[a] : box.lo[a]) - o_[a]) * inv_[a];
+            const double t_far = (double(negative_[a] ? box.lo[a] : box.hi[a]) - o_[a]) * inv_[a] * pad;
+            tmin = t_near > tmin ? t_near : tmin;  // false for NaN: the slab does not narrow
+            tmax = t_far < tmax ? t_far : tmax;
         }
         entry = tmin;
         return tmin <= tmax;
@@ -52,6 +48,7 @@ public:
 
 private:
     Vec3 o_, inv_;
+    bool negative_[3];
 };
 
 class Bvh {

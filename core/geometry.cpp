@@ -41,6 +41,7 @@ inline bool Geometry::test_any(uint32_t prim, const Ray& ray, uint32_t self) con
 }
 
 bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
+    if (!is_finite(ray.o) || !is_finite(ray.d)) return false;  // would visit every node for nothing
     Ray r = ray;
     if (accelerator_ == Accelerator::bvh)
         return bvh_.closest(r, [&](uint32_t prim, Ray& rr) { return test_closest(prim, rr, self, hit); });
@@ -50,6 +51,7 @@ bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
 }
 
 bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
+    if (!is_finite(ray.o) || !is_finite(ray.d)) return false;
     auto blocks = [&](uint32_t prim, const Ray& r) { return prim != target && test_any(prim, r, self); };
     if (accelerator_ == Accelerator::bvh) return bvh_.any(ray, blocks);
     for (uint32_t prim = 0; prim < primitive_count(); ++prim)

@@ -1,0 +1,131 @@
+// The BVH must answer exactly as testing every primitive does: same primitive, same t, for
+// random rays, axis-parallel rays with signed zeros, and rays starting on node planes.
+#include <gtest/gtest.h>
+
+#include "geometry.h"
+#include "rng.h"
+#include "sampling.h"
+
+namespace glint {
+namespace {
+
+struct Scene {
+    std::vector<Sphere> spheres;
+    std::vector<Triangle> triangles;
+};
+
+Scene random_scene(uint64_t seed, int spheres, int triangles) {
+    Rng rng(seed, 0, 0);
+    auto point = [&] { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 20 - Vec3{10}; };
+    Scene s;
+    for (int i = 0; i < spheres; ++i) s.spheres.push_back({point(), 0.05 + rng.uniform()});
+    for (int i = 0; i < triangles; ++i) {
+        const Vec3 a = point();
+        s.triangles.push_back({a, a + (point() * 0.1), a + (point() * 0.1)});
+    }
+    return s;
+}
+
+// A grid of unit squares in the z = 0 plane, two triangles each: its node boxes share planes.
+std::vector<Triangle> grid(int n) {
+    std::vector<Triangle> out;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            const Vec3 a{double(i), double(j), 0}, b{i + 1.0, double(j), 0}, c{i + 1.0, j + 1.0, 0}, d{double(i), j + 1.0, 0};
+            out.push_back({a, b, c});
+            out.push_back({a, c, d});
+        }
+    return out;
+}
+
+void expect_same_answers(const Geometry& bvh, const Geometry& list, const Ray& ray) {
+    Hit a, b;
+    const bool hit_a = bvh.intersect(ray, kNoPrimitive, a), hit_b = list.intersect(ray, kNoPrimitive, b);
+    ASSERT_EQ(hit_a, hit_b);
+    EXPECT_EQ(bvh.occluded(ray, kNoPrimitive), hit_b);
+    if (!hit_a) return;
+    EXPECT_EQ(a.t, b.t);  // bit for bit: the same primitive test decides
+    if (a.prim == b.prim) return;
+    // A ray through a shared edge or vertex meets several primitives at the same t; either
+    // answer is right, but it must be a true tie.
+    Hit tie;
+    Ray only_b = ray;
+    only_b.tmax = b.t;
+    ASSERT_FALSE(bvh.is_sphere(a.prim));
+    ASSERT_TRUE(bvh.triangle(a.prim).intersect(only_b, tie.triangle));
+    EXPECT_EQ(tie.triangle.t, b.t);
+}
+
+TEST(Bvh, MatchesBruteForceOnRandomRays) {
+    const Scene s = random_scene(11, 200, 3000);
+    const Geometry bvh(s.spheres, s.triangles, Accelerator::bvh), list(s.spheres, s.triangles, Accelerator::list);
+    Rng rng(12, 0, 0);
+    for (int i = 0; i < 20000; ++i) {
+        const Vec3 o = Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 30 - Vec3{15};
+        const Ray ray{o, sample_uniform_sphere(rng.uniform(), rng.uniform())};
+        expect_same_answers(bvh, list, ray);
+    }
+}
+
+TEST(Bvh, AxisParallelRaysWithSignedZerosOnNodePlanes) {
+    const std::vector<Triangle> triangles = grid(32);
+    const Geometry bvh({}, triangles, Accelerator::bvh), list({}, triangles, Accelerator::list);
+    Rng rng(13, 0, 0);
+    for (int i = 0; i < 5000; ++i) {
+        // Origins on integer coordinates lie exactly on the planes of many node boxes.
+        const Vec3 o{std::floor(rng.uniform() * 33), std::floor(rng.uniform() * 33), rng.uniform() < 0.5 ? 1.0 : -1.0};
+        for (double zero : {0.0, -0.0}) {
+            expect_same_answers(bvh, list, Ray{o, {zero, zero, -o.z}});       // straight down onto shared vertices
+            expect_same_answers(bvh, list, Ray{{o.x, o.y, 0}, {1, zero, zero}});  // in the plane: no hit
+            expect_same_answers(bvh, list, Ray{o, normalize(Vec3{1, zero, -o.z})});
+        }
+    }
+    // Straight down onto a vertex, the answer is a hit at t = 1 exactly.
+    Hit hit;
+    ASSERT_TRUE(bvh.intersect(Ray{{5, 5, 1}, {-0.0, 0.0, -1}}, kNoPrimitive, hit));
+    EXPECT_EQ(hit.t, 1);
+}
+
+TEST(Bvh, NanRaysTerminateWithoutAHit) {
+    const Scene s = random_scene(14, 50, 500);
+    const Geometry bvh(s.spheres, s.triangles);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    Hit hit;
+    EXPECT_FALSE(bvh.intersect(Ray{{0, 0, 0}, {nan, 0, 1}}, kNoPrimitive, hit));
+    EXPECT_FALSE(bvh.intersect(Ray{{nan, 0, 0}, {0, 0, 1}}, kNoPrimitive, hit));
+    EXPECT_FALSE(bvh.occluded(Ray{{0, 0, 0}, {nan, nan, nan}}, kNoPrimitive));
+}
+
+TEST(Bvh, TreeIsWellFormed) {
+    const Scene s = random_scene(15, 100, 5000);
+    const Geometry g(s.spheres, s.triangles);
+    const Bvh& bvh = g.bvh();
+    // Every primitive appears in exactly one leaf, and every child box lies in its parent's.
+    std::vector<int> seen(g.primitive_count(), 0);
+    for (size_t i = 0; i < bvh.nodes().size(); ++i) {
+        const BvhNode& n = bvh.nodes()[i];
+        if (n.is_leaf()) {
+            EXPECT_LE(n.count, 4u);
+            for (uint32_t k = n.first; k < n.first + n.count; ++k) ++seen[bvh.prims()[k]];
+            continue;
+        }
+        for (uint32_t c : {n.first, n.first + 1})
+            for (int a = 0; a < 3; ++a) {
+                EXPECT_GE(bvh.nodes()[c].box.lo[a], n.box.lo[a]);
+                EXPECT_LE(bvh.nodes()[c].box.hi[a], n.box.hi[a]);
+            }
+    }
+    for (int count : seen) EXPECT_EQ(count, 1);
+}
+
+TEST(Bvh, CoincidentPrimitivesStillBuildAShallowTree) {
+    // 10,000 copies of one triangle: SAH finds no split, the median fallback must bound depth.
+    const std::vector<Triangle> same(10000, Triangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    const Geometry g({}, same);
+    Hit hit;
+    EXPECT_TRUE(g.intersect(Ray{{0.2, 0.2, 1}, {0, 0, -1}}, kNoPrimitive, hit));
+    EXPECT_EQ(hit.t, 1);
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,31 @@
+// The error estimate must be honest: within a factor of 1.5 of the RMSE measured against a
+// converged reference (rendered here with 32× the samples and another seed).
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+namespace glint {
+namespace {
+
+void expect_honest_estimate(LoadedScene s, uint32_t spp) {
+    s.settings.spp = spp * 32;
+    s.settings.seed = 1000;
+    const Image reference = testing::render(s)->film().mean();
+    s.settings.spp = spp;
+    s.settings.seed = 1;
+    const auto job = testing::render(s);
+    const double measured = rmse(job->film().mean(), reference);
+    const double estimated = job->film().error_estimate();
+    EXPECT_LT(estimated / measured, 1.5) << "estimated " << estimated << ", measured " << measured;
+    EXPECT_GT(estimated / measured, 1 / 1.5) << "estimated " << estimated << ", measured " << measured;
+}
+
+TEST(ErrorEstimate, IsWithinFiftyPercentOfTheMeasuredErrorOnTheCornellBox) {
+    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    s.settings.width = 32;
+    s.settings.height = 24;
+    expect_honest_estimate(s, 128);
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,42 @@
+// The film: sums, the error estimate's formula, and samples that are NaN or infinite.
+#include <gtest/gtest.h>
+
+#include "film.h"
+
+namespace glint {
+namespace {
+
+TEST(Film, DropsAndCountsNonFiniteSamples) {
+    Film film(2, 1);
+    film.add(0, 0, Rgb{1});
+    film.add(0, 0, Rgb{std::numeric_limits<double>::quiet_NaN(), 0, 0});
+    film.add(0, 0, Rgb{0, std::numeric_limits<double>::infinity(), 0});
+    film.add(0, 0, Rgb{3});
+    film.add(1, 0, Rgb{0, 0, -std::numeric_limits<double>::infinity()});
+    EXPECT_EQ(film.dropped(), 3u);
+    EXPECT_EQ(film.pixel(0, 0).count, 2u);
+    const Image image = film.mean();
+    EXPECT_EQ(image.at(0, 0), Rgb{2});
+    EXPECT_EQ(image.at(1, 0), Rgb{0});  // no samples yet: black, not NaN
+    for (float v : image.rgb) EXPECT_TRUE(std::isfinite(v));
+}
+
+TEST(Film, ErrorEstimateIsTheStandardErrorOfEachPixelMean) {
+    Film film(2, 1);
+    // Pixel 0 channel values {0, 2}: sample variance 2, variance of the mean 1.
+    // Pixel 1: {1, 1}: variance 0. Average over 6 channel values of 1,1,1,0,0,0 = 0.5.
+    film.add(0, 0, Rgb{0});
+    film.add(0, 0, Rgb{2});
+    film.add(1, 0, Rgb{1});
+    film.add(1, 0, Rgb{1});
+    EXPECT_DOUBLE_EQ(film.error_estimate(), std::sqrt(0.5));
+}
+
+TEST(Film, ErrorEstimateIsInfiniteUntilEveryPixelHasTwoSamples) {
+    Film film(1, 1);
+    film.add(0, 0, Rgb{1});
+    EXPECT_TRUE(std::isinf(film.error_estimate()));
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,123 @@
+// Light sampling on hard cases: lights subtending 1e-6 and 1e-12 sr, a light nearly touching
+// the shading point, and sample/pdf consistency that MIS depends on.
+#include <gtest/gtest.h>
+
+#include "lights.h"
+#include "sampling.h"
+
+namespace glint {
+namespace {
+
+struct OneLight {
+    Geometry geometry;
+    std::vector<Material> materials;
+    std::vector<uint32_t> material_of_prim;
+    LightSet lights;
+
+    OneLight(std::vector<Sphere> spheres, std::vector<Triangle> triangles, double radiance)
+        : geometry(std::move(spheres), std::move(triangles)),
+          materials{Material{MaterialType::diffuse, Rgb{0}, 1.5, Rgb{radiance}}},
+          material_of_prim(geometry.primitive_count(), 0),
+          lights(geometry, materials, material_of_prim) {}
+};
+
+struct Estimate {
+    double mean, sigma;
+};
+
+// Irradiance at p with normal n by next-event estimation: mean of L·cos/pdf.
+Estimate irradiance_by_light_sampling(const OneLight& scene, const Vec3& p, const Vec3& n, int count) {
+    Rng rng(21, 0, 0);
+    double sum = 0, sum_sq = 0;
+    for (int i = 0; i < count; ++i) {
+        LightSample ls;
+        double value = 0;
+        if (scene.lights.sample(p, kNoPrimitive, rng.uniform(), rng.uniform(), rng.uniform(), ls)) {
+            EXPECT_TRUE(std::isfinite(ls.pdf) && ls.pdf > 0);
+            value = ls.emission.x * std::max(0.0, dot(ls.wi, n)) / ls.pdf;
+        }
+        sum += value;
+        sum_sq += value * value;
+    }
+    const double mean = sum / count;
+    return {mean, std::sqrt(std::max(0.0, sum_sq / count - mean * mean) / count)};
+}
+
+// The same by brute force: cosine-weighted directions, π·L times the fraction that hit.
+Estimate irradiance_by_brute_force(const OneLight& scene, const Vec3& p, const Vec3& n, int count) {
+    Rng rng(22, 0, 0);
+    const Frame frame = Frame::around(n);
+    int hits = 0;
+    for (int i = 0; i < count; ++i) {
+        Hit hit;
+        hits += scene.geometry.intersect(Ray{p, frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()))},
+                                         kNoPrimitive, hit);
+    }
+    const double f = double(hits) / count;
+    return {kPi * f, kPi * std::sqrt(f * (1 - f) / count)};
+}
+
+TEST(Lights, TinyFarSpheresHaveFinitePdfsAndExactIrradiance) {
+    // Solid angles of 1e-6 sr and about 3e-12 sr: in float, 1 - cos θmax would be 0.
+    for (const double ratio : {std::sqrt(1e-6 / kPi), 1e-6}) {
+        const double distance = 1e3, radius = ratio * distance;
+        const OneLight scene({Sphere{{0, 0, distance}, radius}}, {}, 1.0);
+        const Estimate e = irradiance_by_light_sampling(scene, {0, 0, 0}, {0, 0, 1}, 100000);
+        const double exact = kPi * ratio * ratio;  // L·π·sin²θmax at normal incidence
+        EXPECT_NEAR(e.mean, exact, 3 * e.sigma + 1e-9 * exact) << "ratio " << ratio;
+        // Every sampled direction really reaches the sphere, at the reported distance.
+        Rng rng(23, 0, 0);
+        for (int i = 0; i < 1000; ++i) {
+            LightSample ls;
+            ASSERT_TRUE(scene.lights.sample({0, 0, 0}, kNoPrimitive, rng.uniform(), rng.uniform(), rng.uniform(), ls));
+            Hit hit;
+            ASSERT_TRUE(scene.geometry.intersect(Ray{{0, 0, 0}, ls.wi}, kNoPrimitive, hit));
+            EXPECT_NEAR(hit.t, ls.distance, 1e-9 * distance);
+        }
+    }
+}
+
+TEST(Lights, NearlyTouchingSphereMatchesBruteForce) {
+    const double gap = 1e-6;
+    const OneLight scene({Sphere{{0, 0, 1 + gap}, 1}}, {}, 1.0);
+    const Estimate nee = irradiance_by_light_sampling(scene, {0, 0, 0}, {0, 0, 1}, 200000);
+    const Estimate brute = irradiance_by_brute_force(scene, {0, 0, 0}, {0, 0, 1}, 200000);
+    const double exact = kPi / ((1 + gap) * (1 + gap));
+    EXPECT_NEAR(nee.mean, brute.mean, 3 * std::hypot(nee.sigma, brute.sigma));
+    EXPECT_NEAR(nee.mean, exact, 3 * nee.sigma + 1e-12);
+}
+
+TEST(Lights, PdfOfASampledPointEqualsTheSamplesPdf) {
+    const Triangle tri{{-1, 2, -1}, {1, 2, -1}, {0, 2.5, 1}};
+    const OneLight scene({Sphere{{0, 5, 0}, 1}, Sphere{{3, 0, 0}, 0.5}}, {tri}, 2.0);
+    Rng rng(24, 0, 0);
+    for (const Vec3& p : {Vec3{0, 0, 0}, Vec3{0, 5, 0.2}}) {  // outside all, and inside the first sphere
+        for (int i = 0; i < 3000; ++i) {
+            LightSample ls;
+            if (!scene.lights.sample(p, kNoPrimitive, rng.uniform(), rng.uniform(), rng.uniform(), ls)) continue;
+            const Ray ray{p, ls.wi, 0, ls.distance * (1 + 1e-9)};
+            Hit hit;
+            ASSERT_TRUE(scene.geometry.intersect(ray, kNoPrimitive, hit));
+            if (hit.prim != ls.prim) continue;  // another light is in front: a different point
+            const SurfaceInteraction si = scene.geometry.interaction(ray, hit);
+            EXPECT_NEAR(scene.lights.pdf(p, kNoPrimitive, si), ls.pdf, 1e-6 * ls.pdf);
+        }
+    }
+}
+
+TEST(Lights, PickingFollowsPower) {
+    // Equal radiance, areas 1 : 4: the larger sphere is picked four times as often.
+    const OneLight scene({Sphere{{0, 0, 10}, 1}, Sphere{{0, 0, -10}, 2}}, {}, 1.0);
+    Rng rng(25, 0, 0);
+    int first = 0;
+    const int n = 100000;
+    for (int i = 0; i < n; ++i) {
+        LightSample ls;
+        ASSERT_TRUE(scene.lights.sample({0, 0, 0}, kNoPrimitive, rng.uniform(), rng.uniform(), rng.uniform(), ls));
+        first += ls.prim == 0;
+    }
+    EXPECT_NEAR(double(first) / n, 0.2, 3 * std::sqrt(0.2 * 0.8 / n));
+}
+
+}  // namespace
+}  // namespace glint

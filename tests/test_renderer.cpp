@@ -1,0 +1,85 @@
+// Progressive rendering: bit-identical images whatever the thread count or pass split, and
+// each way a job can stop.
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+namespace glint {
+namespace {
+
+LoadedScene small_cornell(uint32_t spp) {
+    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    s.settings.width = 40;
+    s.settings.height = 30;
+    s.settings.spp = spp;
+    return s;
+}
+
+TEST(Renderer, ImagesAreBitIdenticalWithOneOrTwoThreads) {
+    const LoadedScene s = small_cornell(32);
+    const auto one = testing::render(s, 1), two = testing::render(s, 2);
+    EXPECT_EQ(encode_pfm(one->film().mean()), encode_pfm(two->film().mean()));
+    EXPECT_EQ(encode_png(one->film().mean(), Encoding::gamma22), encode_png(two->film().mean(), Encoding::gamma22));
+    EXPECT_EQ(one->film().error_estimate(), two->film().error_estimate());
+}
+
+TEST(Renderer, PassSplitDoesNotChangeTheImage) {
+    const LoadedScene s = small_cornell(16);
+    ThreadPool pool(2);
+    RenderJob whole(s.scene, s.settings), split(s.scene, s.settings);
+    whole.render_pass(pool, 0, 16);
+    split.render_pass(pool, 0, 4);
+    split.render_pass(pool, 4, 12);
+    split.render_pass(pool, 12, 16);
+    EXPECT_EQ(encode_pfm(whole.film().mean()), encode_pfm(split.film().mean()));
+}
+
+TEST(Renderer, DifferentSeedsGiveDifferentImages) {
+    LoadedScene s = small_cornell(8);
+    const auto a = testing::render(s);
+    s.settings.seed = 1;
+    const auto b = testing::render(s);
+    EXPECT_NE(encode_pfm(a->film().mean()), encode_pfm(b->film().mean()));
+}
+
+TEST(Renderer, CancelStopsAfterThePassAndKeepsItsSamples) {
+    const LoadedScene s = small_cornell(4096);
+    ThreadPool pool(2);
+    RenderJob job(s.scene, s.settings);
+    int passes = 0;
+    const StopReason reason = job.run(pool, [&](const Progress&) {
+        if (++passes == 2) job.cancel();
+    });
+    EXPECT_EQ(reason, StopReason::cancelled);
+    EXPECT_EQ(passes, 2);
+    EXPECT_GE(job.film().pixel(0, 0).count, job.progress().spp_done);
+    EXPECT_GT(job.progress().spp_done, 0u);
+}
+
+TEST(Renderer, StopsAtTheTimeLimit) {
+    LoadedScene s = small_cornell(1u << 20);
+    s.settings.time_limit = 0.3;
+    ThreadPool pool(2);
+    RenderJob job(s.scene, s.settings);
+    EXPECT_EQ(job.run(pool), StopReason::time_limit);
+    EXPECT_LT(job.progress().spp_done, s.settings.spp);
+}
+
+TEST(Renderer, StopsAtTheTargetError) {
+    LoadedScene s = small_cornell(1u << 20);
+    s.settings.target_error = 0.2;
+    ThreadPool pool(2);
+    RenderJob job(s.scene, s.settings);
+    EXPECT_EQ(job.run(pool), StopReason::target_error);
+    EXPECT_LE(job.film().error_estimate(), 0.2);
+}
+
+TEST(Renderer, TentFilterRoundsSampleCountsUpToWholeSubpixelRounds) {
+    LoadedScene s = small_cornell(5);
+    EXPECT_EQ(RenderJob(s.scene, s.settings).settings().spp, 8u);
+    s.settings.filter = Filter::box;
+    EXPECT_EQ(RenderJob(s.scene, s.settings).settings().spp, 5u);
+}
+
+}  // namespace
+}  // namespace glint

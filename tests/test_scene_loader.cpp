@@ -1,0 +1,126 @@
+// Scene files: defaults, smallpt's scene, and one clear message naming the JSON path for each
+// kind of bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "scene_loader.h"
+
+namespace glint {
+namespace {
+
+std::string error_of(const std::string& json, const std::filesystem::path& folder = {}) {
+    try {
+        parse_scene(json, folder);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+std::string sphere_with(const std::string& fields) {
+    return R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1},
+                           {"type": "sphere", "center": [0, 0, 0], )" + fields + "}]}";
+}
+
+TEST(SceneLoader, EveryFieldHasADefault) {
+    const LoadedScene s = parse_scene("{}", {});
+    EXPECT_EQ(s.settings.width, 1024);
+    EXPECT_EQ(s.settings.height, 768);
+    EXPECT_EQ(s.settings.spp, 64u);
+    EXPECT_EQ(s.settings.filter, Filter::tent);
+    EXPECT_EQ(s.scene->geometry().primitive_count(), 0u);
+    EXPECT_TRUE(s.scene->integrator().light_sampling);
+}
+
+TEST(SceneLoader, LoadsSmallptsCornellBox) {
+    const LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    EXPECT_EQ(s.scene->geometry().primitive_count(), 9u);
+    EXPECT_EQ(s.scene->lights().size(), 1u);
+    EXPECT_EQ(s.scene->geometry().sphere(8).radius, 600);
+    EXPECT_EQ(s.scene->material(8).emission, Rgb{12});
+    EXPECT_EQ(s.scene->material(7).type, MaterialType::glass);
+    EXPECT_EQ(s.scene->camera().near, 140);
+}
+
+TEST(SceneLoader, ExampleScenesAllLoad) {
+    for (const auto& entry : std::filesystem::directory_iterator(GLINT_SCENES_DIR))
+        if (entry.path().extension() == ".json") {
+            EXPECT_NO_THROW(load_scene(entry.path())) << entry.path();
+        }
+}
+
+TEST(SceneLoader, ErrorsNameTheJsonPath) {
+    EXPECT_EQ(error_of(sphere_with(R"("radius": -2)")), "objects[1].radius: must be > 0");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 0)")), "objects[1].radius: must be > 0");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1e308)")), "objects[1].radius: must be <= 1e+09");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": "one")")), "objects[1].radius: must be a number");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "raduis": 2)")),
+              "objects[1].raduis: unknown field (expected one of: type, center, radius, material, emission)");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"albedo": [1, 1.5, 1]})")),
+              "objects[1].material.albedo[1]: must be in [0, 1]");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"ior": 1.3})")),
+              "objects[1].material.ior: only glass has an index of refraction");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"type": "metal"})")),
+              R"(objects[1].material.type: must be one of "diffuse", "mirror", "glass" (got "metal"))");
+    EXPECT_EQ(error_of(R"({"film": {"width": 0}})"), "film.width: must be in [1, 16384]");
+    EXPECT_EQ(error_of(R"({"film": {"width": "big"}})"), "film.width: must be an integer");
+    EXPECT_EQ(error_of(R"({"film": {"width": 16384, "height": 16384}})"),
+              "film: image of 268435456 pixels exceeds the limit of 16777216");
+    EXPECT_EQ(error_of(R"({"film": {"spp": 99999999}})"), "film.spp: must be in [1, 1048576]");
+    EXPECT_EQ(error_of(R"({"camera": {"direction": [0, 0, 0]}})"), "camera.direction: must not be zero");
+    EXPECT_EQ(error_of(R"({"camera": {"direction": [0, 1, 0]}})"), "camera: up must not be parallel to the view direction");
+    EXPECT_EQ(error_of(R"({"camera": {"fov": 180}})"), "camera.fov: must be in (0, 180) degrees");
+    EXPECT_EQ(error_of(R"({"objects": [{"type": "cone"}]})"), R"(objects[0].type: must be one of "sphere", "mesh" (got "cone"))");
+    EXPECT_EQ(error_of(R"({"objects": [{"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0, 1, 3]]}]})"),
+              "objects[0].indices[0][2]: must be in [0, 2]");
+    EXPECT_EQ(error_of(R"({"objects": {}})"), "objects: must be an array");
+    EXPECT_EQ(error_of(R"({"colour": 1})"),
+              "colour: unknown field (expected one of: description, camera, film, integrator, objects)");
+}
+
+TEST(SceneLoader, MalformedAndHostileJsonIsRejectedCleanly) {
+    EXPECT_EQ(error_of("{\"film\": "), "malformed JSON: parse error at line 1, column 10: syntax error while parsing value - unexpected end of input; expected '[', '{', or a literal");
+    EXPECT_EQ(error_of("[1, 2]"), "must be an object");
+    EXPECT_EQ(error_of("{\"x\": NaN}").rfind("malformed JSON", 0), 0u);
+    EXPECT_EQ(error_of(std::string(100000, '[') + std::string(100000, ']')), "JSON nested deeper than 32 levels");
+}
+
+class SceneFolder : public ::testing::Test {
+protected:
+    void SetUp() override {
+        root_ = std::filesystem::temp_directory_path() / ("glint-scene-test-" + std::to_string(::getpid()));
+        std::filesystem::create_directories(root_ / "scene" / "meshes");
+        write(root_ / "scene" / "meshes" / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+        write(root_ / "outside.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+        std::filesystem::create_symlink(root_ / "outside.obj", root_ / "scene" / "link.obj");
+    }
+    void TearDown() override { std::filesystem::remove_all(root_); }
+    static void write(const std::filesystem::path& p, const std::string& text) { std::ofstream(p) << text; }
+    std::string mesh(const std::string& file) const {
+        return error_of(R"({"objects": [{"type": "mesh", "file": ")" + file + R"("}]})", root_ / "scene");
+    }
+    std::filesystem::path root_;
+};
+
+TEST_F(SceneFolder, LoadsMeshesRelativeToTheSceneWithTransforms) {
+    const LoadedScene s = parse_scene(R"({"objects": [{"type": "mesh", "file": "meshes/quad.obj",
+                                          "scale": 2, "translate": [0, 0, 5]}]})",
+                                      root_ / "scene");
+    ASSERT_EQ(s.scene->geometry().primitive_count(), 2u);
+    EXPECT_EQ(s.scene->geometry().triangle(1).v2, (Vec3{0, 2, 5}));
+}
+
+TEST_F(SceneFolder, RefusesFilesOutsideTheSceneFolder) {
+    EXPECT_EQ(mesh("../outside.obj"), "objects[0].file: must stay inside the scene's folder");
+    EXPECT_EQ(mesh("meshes/../../outside.obj"), "objects[0].file: must stay inside the scene's folder");
+    EXPECT_EQ(mesh("link.obj"), "objects[0].file: must stay inside the scene's folder");
+    EXPECT_EQ(mesh((root_ / "outside.obj").string()), "objects[0].file: must be relative to the scene's folder");
+    EXPECT_EQ(mesh("missing.obj").rfind("objects[0].file: cannot open", 0), 0u);
+    EXPECT_EQ(error_of(R"({"objects": [{"type": "mesh", "file": "meshes/quad.obj"}]})"),
+              "objects[0].file: file references need a scene folder");
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,145 @@
+// Watertightness: rays from inside closed meshes, aimed exactly at shared edges and vertices,
+// must never escape; and the triangle test itself on hard cases.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <map>
+
+#include "geometry.h"
+#include "rng.h"
+
+namespace glint {
+namespace {
+
+struct Mesh {
+    std::vector<Vec3> vertices;
+    std::vector<std::array<uint32_t, 3>> faces;
+
+    std::vector<Triangle> triangles(const Vec3& offset) const {
+        std::vector<Triangle> out;
+        for (const auto& f : faces) out.push_back({vertices[f[0]] + offset, vertices[f[1]] + offset, vertices[f[2]] + offset});
+        return out;
+    }
+};
+
+Mesh cube() {
+    Mesh m;
+    for (int i = 0; i < 8; ++i) m.vertices.push_back({i & 1 ? 1.0 : -1.0, i & 2 ? 1.0 : -1.0, i & 4 ? 1.0 : -1.0});
+    const std::array<std::array<uint32_t, 4>, 6> quads = {{{0, 1, 3, 2}, {4, 6, 7, 5}, {0, 4, 5, 1},
+                                                          {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 5, 7, 3}}};
+    for (const auto& q : quads) {
+        m.faces.push_back({q[0], q[1], q[2]});
+        m.faces.push_back({q[0], q[2], q[3]});
+    }
+    return m;
+}
+
+// An icosahedron subdivided `levels` times with vertices shared between faces (as a closed
+// indexed mesh has them), pushed onto the unit sphere.
+Mesh icosphere(int levels) {
+    const double g = (1 + std::sqrt(5.0)) / 2;
+    Mesh m;
+    for (const Vec3& v : {Vec3{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g}, {0, -1, -g},
+                          {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}})
+        m.vertices.push_back(normalize(v));
+    m.faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+               {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
+               {3, 8, 9},  {4, 9, 5},  {2, 4, 11},  {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+    for (int level = 0; level < levels; ++level) {
+        std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
+        auto midpoint = [&](uint32_t a, uint32_t b) {
+            const auto key = std::minmax(a, b);
+            const auto [it, inserted] = midpoints.try_emplace(key, uint32_t(m.vertices.size()));
+            if (inserted) m.vertices.push_back(normalize(m.vertices[a] + m.vertices[b]));
+            return it->second;
+        };
+        std::vector<std::array<uint32_t, 3>> faces;
+        for (const auto& f : m.faces) {
+            const uint32_t ab = midpoint(f[0], f[1]), bc = midpoint(f[1], f[2]), ca = midpoint(f[2], f[0]);
+            faces.insert(faces.end(), {{f[0], ab, ca}, {f[1], bc, ab}, {f[2], ca, bc}, {ab, bc, ca}});
+        }
+        m.faces = faces;
+    }
+    return m;
+}
+
+// Shoots from `origin` at every vertex, every edge midpoint and points along every edge;
+// returns how many rays found no triangle.
+int escapes(const Mesh& mesh, const Vec3& offset, const Vec3& origin, Accelerator accelerator) {
+    const Geometry geometry({}, mesh.triangles(offset), accelerator);
+    std::vector<Vec3> targets = mesh.vertices;
+    for (const auto& f : mesh.faces)
+        for (int e = 0; e < 3; ++e)
+            for (double s : {0.5, 0.25, 1.0 / 3, 0.9})
+                targets.push_back(mesh.vertices[f[e]] * (1 - s) + mesh.vertices[f[(e + 1) % 3]] * s);
+    int missed = 0;
+    for (const Vec3& target : targets) {
+        const Ray ray{origin + offset, normalize(target - origin)};
+        Hit hit;
+        missed += !geometry.intersect(ray, kNoPrimitive, hit);
+    }
+    return missed;
+}
+
+TEST(Triangle, ClosedMeshesShotAtSharedEdgesAndVerticesNeverLeakRays) {
+    Rng rng(7, 0, 0);
+    for (const Mesh& mesh : {cube(), icosphere(3)}) {
+        for (const Vec3& offset : {Vec3{0, 0, 0}, Vec3{1e4, -1e4, 1e4}}) {
+            for (int trial = 0; trial < 20; ++trial) {
+                // The centre (axis-aligned and diagonal directions) and random interior points.
+                const Vec3 origin = trial == 0 ? Vec3{0, 0, 0}
+                                               : Vec3{rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5} * 0.8;
+                EXPECT_EQ(escapes(mesh, offset, origin, Accelerator::bvh), 0) << "offset " << offset.x << " trial " << trial;
+                EXPECT_EQ(escapes(mesh, offset, origin, Accelerator::list), 0) << "offset " << offset.x << " trial " << trial;
+            }
+        }
+    }
+}
+
+TEST(Triangle, AxisParallelRaysWithSignedZerosHitCubeEdges) {
+    const Geometry geometry({}, cube().triangles({}));
+    for (double zero : {0.0, -0.0})
+        for (const Vec3& d : {Vec3{1, zero, zero}, Vec3{zero, -1, zero}, Vec3{zero, zero, 1}, normalize(Vec3{1, 1, zero}),
+                              normalize(Vec3{-1, zero, -1})}) {
+            Hit hit;
+            ASSERT_TRUE(geometry.intersect(Ray{{0, 0, 0}, d}, kNoPrimitive, hit));
+            EXPECT_TRUE(std::isfinite(hit.t));
+            EXPECT_NEAR(hit.t, 1.0 / max_component(abs(d)), 1e-12);  // the cube is [-1, 1]^3
+        }
+}
+
+TEST(Triangle, RejectsDegenerateAndCoplanarCases) {
+    TriangleHit hit;
+    const Triangle sliver{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};          // zero area, collinear
+    const Triangle point{{1, 1, 1}, {1, 1, 1}, {1, 1, 1}};           // coincident vertices
+    const Triangle flat{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    EXPECT_FALSE(sliver.intersect(Ray{{0.5, 0, -1}, {0, 0, 1}}, hit));
+    EXPECT_FALSE(point.intersect(Ray{{1, 1, 0}, {0, 0, 1}}, hit));
+    EXPECT_FALSE(flat.intersect(Ray{{-1, 0.25, 0}, {1, 0, 0}}, hit));  // in the triangle's plane
+    EXPECT_TRUE(flat.intersect(Ray{{0.25, 0.25, 1}, {0, 0, -1}}, hit));  // two-sided: from +z
+    EXPECT_TRUE(flat.intersect(Ray{{0.25, 0.25, -1}, {0, 0, 1}}, hit));  // and from -z
+    EXPECT_DOUBLE_EQ(hit.t, 1);
+    EXPECT_NEAR(hit.b0 + hit.b1 + hit.b2, 1, 1e-15);
+}
+
+TEST(Triangle, HitPointsStayWithinTheirErrorBounds) {
+    Rng rng(8, 0, 0);
+    const Triangle t{{1e4, 1e4, 1e4}, {1e4 + 1, 1e4, 1e4 + 0.3}, {1e4, 1e4 + 1, 1e4 - 0.2}};
+    for (int i = 0; i < 10000; ++i) {
+        const double b1 = rng.uniform() * 0.5, b2 = rng.uniform() * 0.5;
+        const Vec3 target = t.v0 * (1 - b1 - b2) + t.v1 * b1 + t.v2 * b2;
+        const Ray ray{target + Vec3{3, -2, 5}, normalize(Vec3{-3, 2, -5})};
+        TriangleHit hit;
+        ASSERT_TRUE(t.intersect(ray, hit));
+        const SurfaceInteraction si = t.interaction(hit, 0);
+        // The computed point is within p_error of the exact plane point (checked in long double).
+        const long double lb1 = hit.b1, lb2 = hit.b2, lb0 = hit.b0;
+        for (int a = 0; a < 3; ++a) {
+            const long double exact = lb0 * t.v0[a] + lb1 * t.v1[a] + lb2 * t.v2[a];
+            EXPECT_LE(std::fabs((long double)si.p[a] - exact), (long double)si.p_error[a]);
+        }
+    }
+}
+
+}  // namespace
+}  // namespace glint
