@@ -4,6 +4,9 @@ namespace glint {
 
 Geometry::Geometry(std::vector<Sphere> spheres, std::vector<Triangle> triangles, Accelerator accelerator)
     : spheres_(std::move(spheres)), triangles_(std::move(triangles)), accelerator_(accelerator) {
+    for (const Triangle& t : triangles_) degenerate_ += !(t.area() > 0);
+    if (accelerator_ == Accelerator::automatic)
+        accelerator_ = primitive_count() <= kListMaxPrimitives ? Accelerator::list : Accelerator::bvh;
     if (accelerator_ != Accelerator::bvh) return;
     std::vector<Bounds3> bounds;
     bounds.reserve(primitive_count());

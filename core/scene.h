@@ -15,7 +15,7 @@ struct IntegratorSettings {
     bool light_sampling = true;  // next-event estimation with MIS; off gives smallpt's estimator
     int max_depth = 1024;        // surface hits per path, a hard cap; RR ends paths long before
     int rr_depth = 5;            // Russian roulette after this many hits, as smallpt
-    Accelerator accelerator = Accelerator::bvh;
+    Accelerator accelerator = Accelerator::automatic;
 };
 
 // Immutable once built (jobs share it across threads). Not copyable: the lights refer to the

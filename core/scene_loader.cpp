@@ -171,8 +171,10 @@ private:
         if (at.has("light_sampling")) s.light_sampling = at["light_sampling"].boolean();
         if (at.has("max_depth")) s.max_depth = int(at["max_depth"].integer(1, 100000));
         if (at.has("rr_depth")) s.rr_depth = int(at["rr_depth"].integer(0, 100000));
-        if (at.has("accelerator"))
-            s.accelerator = at["accelerator"].choice({"bvh", "list"}) == "bvh" ? Accelerator::bvh : Accelerator::list;
+        if (at.has("accelerator")) {
+            const std::string a = at["accelerator"].choice({"auto", "bvh", "list"});
+            s.accelerator = a == "auto" ? Accelerator::automatic : a == "bvh" ? Accelerator::bvh : Accelerator::list;
+        }
         return s;
     }
 

@@ -9,6 +9,8 @@
 #include "progress_bar.h"
 #include "scene_loader.h"
 
+#include <spdlog/spdlog.h>
+
 namespace glint {
 namespace {
 
@@ -48,6 +50,10 @@ int run_render(const RenderOptions& o) {
         std::fprintf(stderr, "glint: %s: %s\n", o.scene.c_str(), e.what());
         return 1;
     }
+    const Geometry& g = loaded.scene->geometry();
+    spdlog::info("{}: {} spheres, {} triangles ({} degenerate, ignored), {} lights; {}x{}, {} spp", o.scene,
+                 g.sphere_count(), g.triangle_count(), g.degenerate_triangles(), loaded.scene->lights().size(),
+                 loaded.settings.width, loaded.settings.height, loaded.settings.spp);
     ThreadPool pool(o.threads);
     RenderJob job(loaded.scene, loaded.settings);
     ProgressBar bar(stderr);

@@ -30,7 +30,7 @@ Geometry build_geometry(const ObjMesh& mesh) {
     triangles.reserve(mesh.triangles.size());
     for (const auto& t : mesh.triangles)
         triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
-    return Geometry({}, std::move(triangles));
+    return Geometry({}, std::move(triangles), Accelerator::bvh);
 }
 
 void trace(const Geometry& geometry, const std::vector<RayRecord>& rays, bool any_hit, ThreadPool& pool,

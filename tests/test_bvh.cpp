@@ -129,3 +129,16 @@ TEST(Bvh, CoincidentPrimitivesStillBuildAShallowTree) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(Bvh, AutomaticChoiceBuildsATreeOnlyForScenesLargerThanSixteenPrimitives) {
+    const Scene small = random_scene(16, 16, 0), large = random_scene(16, 9, 8);
+    EXPECT_EQ(Geometry(small.spheres, small.triangles).accelerator(), Accelerator::list);
+    EXPECT_TRUE(Geometry(small.spheres, small.triangles).bvh().nodes().empty());
+    EXPECT_EQ(Geometry(large.spheres, large.triangles).accelerator(), Accelerator::bvh);
+}
+
+}  // namespace
+}  // namespace glint
