@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "files.h"
 #include "scene_loader.h"
 
 namespace glint {
@@ -120,6 +121,24 @@ TEST_F(SceneFolder, RefusesFilesOutsideTheSceneFolder) {
     EXPECT_EQ(mesh("missing.obj").rfind("objects[0].file: cannot open", 0), 0u);
     EXPECT_EQ(error_of(R"({"objects": [{"type": "mesh", "file": "meshes/quad.obj"}]})"),
               "objects[0].file: file references need a scene folder");
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(SceneLoader, TheReadmesExampleSceneIsValid) {
+    const std::vector<uint8_t> bytes = read_file(GLINT_README, 1 << 20);
+    const std::string readme(bytes.begin(), bytes.end());
+    const size_t start = readme.find("```json\n");
+    ASSERT_NE(start, std::string::npos);
+    const size_t end = readme.find("```", start + 8);
+    const LoadedScene s = parse_scene(readme.substr(start + 8, end - start - 8), GLINT_SCENES_DIR);
+    EXPECT_EQ(s.scene->geometry().sphere_count(), 2u);
+    EXPECT_EQ(s.scene->geometry().triangle_count(), 8192u + 2u);
+    EXPECT_EQ(s.settings.width, 640);
 }
 
 }  // namespace
