@@ -45,17 +45,22 @@ Rgb RenderJob::sample(int x, int y, uint32_t index) const {
 
 bool RenderJob::should_stop() const { return cancelled_ || Clock::now() >= deadline_; }
 
-void RenderJob::render_tile(size_t tile, uint32_t first, uint32_t last) {
-    if (should_stop()) return;
+bool RenderJob::render_tile(size_t tile, uint32_t first, uint32_t last) {
+    if (should_stop()) return false;
     const int x0 = int(tile % tiles_x_) * kTileSize, y0 = int(tile / tiles_x_) * kTileSize;
     const int x1 = std::min(x0 + kTileSize, settings_.width), y1 = std::min(y0 + kTileSize, settings_.height);
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x)
             for (uint32_t s = first; s < last; ++s) film_.add(x, y, sample(x, y, s));
+    return true;
 }
 
-void RenderJob::render_pass(ThreadPool& pool, uint32_t first, uint32_t last) {
-    pool.parallel_for(size_t(tiles_x_) * tiles_y_, [&](size_t tile) { render_tile(tile, first, last); });
+bool RenderJob::render_pass(ThreadPool& pool, uint32_t first, uint32_t last) {
+    std::atomic<size_t> skipped{0};
+    pool.parallel_for(size_t(tiles_x_) * tiles_y_, [&](size_t tile) {
+        if (!render_tile(tile, first, last)) ++skipped;
+    });
+    return skipped == 0;
 }
 
 Progress RenderJob::progress() const {
@@ -86,17 +91,18 @@ StopReason RenderJob::run(ThreadPool& pool, const std::function<void(const Progr
         deadline_ = start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(settings_.time_limit));
     uint32_t pass = samples_per_round(settings_.filter);
     while (spp_done_ < settings_.spp) {
-        render_pass(pool, spp_done_, spp_done_ + pass);
-        if (should_stop()) break;  // the pass may be incomplete: its samples count per pixel
+        // A stopped pass leaves some tiles with more samples than others; each pixel's own
+        // count keeps its mean right.
+        if (!render_pass(pool, spp_done_, spp_done_ + pass)) break;
         spp_done_ += pass;
         const Progress p = progress();
         if (on_pass) on_pass(p);
         if (settings_.target_error > 0 && p.error_estimate <= settings_.target_error) return StopReason::target_error;
+        if (should_stop()) break;
         if (spp_done_ < settings_.spp) pass = next_pass_size(pass);
     }
-    if (cancelled_) return StopReason::cancelled;
-    if (spp_done_ < settings_.spp) return StopReason::time_limit;
-    return StopReason::completed;
+    if (spp_done_ == settings_.spp) return StopReason::completed;
+    return cancelled_ ? StopReason::cancelled : StopReason::time_limit;
 }
 
 }  // namespace glint

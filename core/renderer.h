@@ -53,8 +53,9 @@ public:
     // Thread-safe: the pass in progress stops after the tiles already being rendered.
     void cancel() { cancelled_ = true; }
 
-    // Samples [first, last) of every pixel, added to the film in sample order.
-    void render_pass(ThreadPool& pool, uint32_t first, uint32_t last);
+    // Samples [first, last) of every pixel, added to the film in sample order. Returns false
+    // if the job was stopped (cancelled or out of time) before every tile was rendered.
+    bool render_pass(ThreadPool& pool, uint32_t first, uint32_t last);
 
     const Film& film() const { return film_; }
     const RenderSettings& settings() const { return settings_; }
@@ -65,7 +66,7 @@ private:
     static constexpr int kTileSize = 16;
 
     Rgb sample(int x, int y, uint32_t index) const;
-    void render_tile(size_t tile, uint32_t first, uint32_t last);
+    bool render_tile(size_t tile, uint32_t first, uint32_t last);
     bool should_stop() const;
     uint32_t next_pass_size(uint32_t previous) const;
 
