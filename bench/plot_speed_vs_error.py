@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 MODES = ["glint", "no-nee", "no-bvh", "smallpt"]
 LABELS = {
-    "glint": "glint (BVH + light sampling, MIS)",
+    "glint": "glint (auto accelerator, light sampling + MIS)",
     "no-nee": "BVH, no light sampling",
     "no-bvh": "light sampling, no BVH",
     "smallpt": "smallpt-equivalent (neither)",

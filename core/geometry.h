@@ -11,7 +11,8 @@
 namespace glint {
 
 // `list` tests every primitive (smallpt's way); `automatic` picks it for scenes so small that a
-// tree costs more than it saves (smallpt's 9 spheres trace 1.36x faster without one), else the BVH.
+// tree costs more than it saves (smallpt's 9 spheres render 1.35-1.5x faster without one, see
+// bench/BENCHMARKS.md), else the BVH.
 enum class Accelerator { automatic, bvh, list };
 inline constexpr uint32_t kListMaxPrimitives = 16;
 
