@@ -94,6 +94,14 @@ struct At {
 
 constexpr double kMaxEmission = 1e12;
 
+// A unit vector along v, exact in direction even where |v|² would underflow (1e-200 components):
+// dividing by the largest component first keeps the squares in range.
+Vec3 unit_direction(const At& at, const Vec3& v, const char* what) {
+    const double largest = max_component(abs(v));
+    if (!(largest > 0)) at.fail(what);
+    return normalize(v / largest);
+}
+
 class SceneParser {
 public:
     SceneParser(const std::filesystem::path& folder, const SceneLimits& limits) : folder_(folder), limits_(limits) {}
@@ -125,20 +133,11 @@ private:
         std::optional<double> look_distance;
         if (at.has("look_at")) {
             const Vec3 to = at["look_at"].vec3(range) - c.position;
-            if (!(length(to) > 0)) at["look_at"].fail("must differ from position");
+            c.direction = unit_direction(at["look_at"], to, "must differ from position");
             look_distance = length(to);
-            c.direction = to / length(to);
         }
-        if (at.has("direction")) {
-            const Vec3 d = at["direction"].vec3(range);
-            if (!(length(d) > 0)) at["direction"].fail("must not be zero");
-            c.direction = normalize(d);
-        }
-        if (at.has("up")) {
-            const Vec3 up = at["up"].vec3(range);
-            if (!(length(up) > 0)) at["up"].fail("must not be zero");
-            c.up = normalize(up);
-        }
+        if (at.has("direction")) c.direction = unit_direction(at["direction"], at["direction"].vec3(range), "must not be zero");
+        if (at.has("up")) c.up = unit_direction(at["up"], at["up"].vec3(range), "must not be zero");
         if (!(length(cross(c.direction, c.up)) > 1e-9)) at.fail("up must not be parallel to the view direction");
         if (at.has("fov")) {
             c.fov_degrees = at["fov"].number();

@@ -71,6 +71,8 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
               "film: image of 268435456 pixels exceeds the limit of 16777216");
     EXPECT_EQ(error_of(R"({"film": {"spp": 99999999}})"), "film.spp: must be in [1, 1048576]");
     EXPECT_EQ(error_of(R"({"camera": {"direction": [0, 0, 0]}})"), "camera.direction: must not be zero");
+    EXPECT_EQ(error_of(R"({"camera": {"look_at": [0, 0, 0]}})"), "camera.look_at: must differ from position");
+    EXPECT_EQ(error_of(R"({"camera": {"direction": [1e-200, -1e-200, 0]}})"), "no error");  // tiny, not zero
     EXPECT_EQ(error_of(R"({"camera": {"direction": [0, 1, 0]}})"), "camera: up must not be parallel to the view direction");
     EXPECT_EQ(error_of(R"({"camera": {"fov": 180}})"), "camera.fov: must be in (0, 180) degrees");
     EXPECT_EQ(error_of(R"({"objects": [{"type": "cone"}]})"), R"(objects[0].type: must be one of "sphere", "mesh" (got "cone"))");
