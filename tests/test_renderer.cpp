@@ -56,22 +56,25 @@ TEST(Renderer, CancelStopsAfterThePassAndKeepsItsSamples) {
     EXPECT_GT(job.progress().spp_done, 0u);
 }
 
-TEST(Renderer, StopsAtTheTimeLimit) {
+// An endless job (2^20 spp) that only `settings` can stop; returns why it stopped.
+StopReason run_unbounded(const std::function<void(RenderSettings&)>& settings, std::unique_ptr<RenderJob>& job) {
     LoadedScene s = small_cornell(1u << 20);
-    s.settings.time_limit = 0.3;
+    settings(s.settings);
     ThreadPool pool(2);
-    RenderJob job(s.scene, s.settings);
-    EXPECT_EQ(job.run(pool), StopReason::time_limit);
-    EXPECT_LT(job.progress().spp_done, s.settings.spp);
+    job = std::make_unique<RenderJob>(s.scene, s.settings);
+    return job->run(pool);
+}
+
+TEST(Renderer, StopsAtTheTimeLimit) {
+    std::unique_ptr<RenderJob> job;
+    EXPECT_EQ(run_unbounded([](RenderSettings& s) { s.time_limit = 0.3; }, job), StopReason::time_limit);
+    EXPECT_LT(job->progress().spp_done, 1u << 20);
 }
 
 TEST(Renderer, StopsAtTheTargetError) {
-    LoadedScene s = small_cornell(1u << 20);
-    s.settings.target_error = 0.2;
-    ThreadPool pool(2);
-    RenderJob job(s.scene, s.settings);
-    EXPECT_EQ(job.run(pool), StopReason::target_error);
-    EXPECT_LE(job.film().error_estimate(), 0.2);
+    std::unique_ptr<RenderJob> job;
+    EXPECT_EQ(run_unbounded([](RenderSettings& s) { s.target_error = 0.2; }, job), StopReason::target_error);
+    EXPECT_LE(job->film().error_estimate(), 0.2);
 }
 
 TEST(Renderer, TentFilterRoundsSampleCountsUpToWholeSubpixelRounds) {
