@@ -317,12 +317,13 @@ LoadedScene parse_scene(const std::string& json_text, const std::filesystem::pat
     try {
         // Refuse deep nesting while parsing, before it can cost stack or memory.
         root = json::parse(json_text, [](int depth, json::parse_event_t, json&) {
-            if (depth > kMaxJsonDepth) throw SceneError("", "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+            if (depth > kMaxJsonDepth)
+                throw SceneError("", "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels", true);
             return true;
         });
     } catch (const json::parse_error& e) {
         std::string what = e.what();
-        throw SceneError("", "malformed JSON: " + what.substr(what.find(' ') + 1));
+        throw SceneError("", "malformed JSON: " + what.substr(what.find(' ') + 1), true);
     }
     return SceneParser(folder, limits).parse(At{root, ""});
 }

@@ -14,13 +14,20 @@ namespace glint {
 
 class SceneError : public std::runtime_error {
 public:
-    SceneError(const std::string& path, const std::string& message)
-        : std::runtime_error(path.empty() ? message : path + ": " + message), path_(path), message_(message) {}
+    // malformed: the text is not acceptable JSON at all (syntax, nesting); otherwise the JSON is
+    // fine but the scene it describes is not.
+    SceneError(const std::string& path, const std::string& message, bool malformed = false)
+        : std::runtime_error(path.empty() ? message : path + ": " + message),
+          path_(path),
+          message_(message),
+          malformed_(malformed) {}
     const std::string& path() const { return path_; }
     const std::string& message() const { return message_; }
+    bool malformed() const { return malformed_; }
 
 private:
     std::string path_, message_;
+    bool malformed_;
 };
 
 // Bounds on what one scene may ask for, so no input exhausts memory or runs forever.

@@ -1,4 +1,4 @@
-// glint: a Monte-Carlo path tracer as a batch command (and, to come, a render service).
+// glint: a Monte-Carlo path tracer as a batch command and a render service.
 #include <cstdio>
 #include <map>
 
@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     const std::map<std::string, std::function<int()>> commands = {
         {"render", glint::add_render_command(app)},
+        {"serve", glint::add_serve_command(app)},
         {"trace-rays", glint::add_trace_rays_command(app)},
     };
     CLI11_PARSE(app, argc, argv);

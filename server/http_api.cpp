@@ -1,0 +1,251 @@
+#include "http_api.h"
+
+#include <chrono>
+
+#include <spdlog/spdlog.h>
+
+#include "files.h"
+#include "job_request.h"
+
+namespace glint {
+namespace {
+
+using namespace std::chrono_literals;
+using Clock = std::chrono::steady_clock;
+constexpr auto kPoll = 250ms;  // how often a waiting stream looks at its client and the job
+constexpr auto kPing = 15s;    // SSE comment that keeps proxies from closing an idle stream
+
+void send_error(httplib::Response& res, int status, const std::string& message, const std::string& path = "") {
+    res.status = status;
+    nlohmann::json body = {{"error", message}};
+    if (!path.empty()) body["path"] = path;
+    res.set_content(body.dump(), "application/json");
+}
+
+void send_json(httplib::Response& res, const nlohmann::json& body, int status = 200) {
+    res.status = status;
+    res.set_content(body.dump(), "application/json");
+}
+
+bool write(httplib::DataSink& sink, const std::string& text) { return sink.write(text.data(), text.size()); }
+
+thread_local Clock::time_point t_request_start;
+
+// Reasons for the statuses cpp-httplib answers by itself, before any handler runs.
+std::string reason(int status) {
+    switch (status) {
+        case 400: return "bad request";
+        case 404: return "no such route or file";
+        case 405: return "method not allowed";
+        case 413: return "request body too large";
+        case 414: return "URI too long";
+        case 416: return "range not satisfiable";
+        default: return "HTTP " + std::to_string(status);
+    }
+}
+
+}  // namespace
+
+HttpApi::HttpApi(JobManager& jobs, ThreadPool& pool, ServiceConfig config)
+    : jobs_(jobs), pool_(pool), config_(std::move(config)) {}
+
+std::shared_ptr<Job> HttpApi::job_or_404(const httplib::Request& req, httplib::Response& res) const {
+    auto job = jobs_.find(req.matches[1]);
+    if (!job) send_error(res, 404, "no job " + std::string(req.matches[1]));
+    return job;
+}
+
+// Parses and queues the job a request describes, or answers with the error and returns null.
+std::shared_ptr<Job> HttpApi::accept(const httplib::Request& req, httplib::Response& res) {
+    try {
+        return jobs_.submit(parse_job_request(req.body, config_.scenes, config_.limits));
+    } catch (const RequestError& e) {
+        send_error(res, e.status, e.what(), e.path);
+    } catch (const QueueFull& e) {
+        res.set_header("Retry-After", "5");
+        send_error(res, 429, e.what());
+    }
+    return nullptr;
+}
+
+void HttpApi::submit(const httplib::Request& req, httplib::Response& res) {
+    if (auto job = accept(req, res)) {
+        res.set_header("Location", "/jobs/" + job->id());
+        send_json(res, job->status(), 202);
+    }
+}
+
+// The plain `curl --data @scene.json .../render -o out.png` use: the finished PNG. Sent chunked
+// once the job ends; a client that goes away cancels its job.
+void HttpApi::render(const httplib::Request& req, httplib::Response& res) {
+    auto job = accept(req, res);
+    if (!job) return;
+    res.set_header("X-Glint-Job", job->id());
+    res.set_chunked_content_provider("image/png", [this, job](size_t, httplib::DataSink& sink) {
+        if (!sink.is_writable()) {
+            job->cancel();
+            return false;
+        }
+        const JobSnapshot s = job->wait(UINT64_MAX, kPoll);
+        if (!is_final(s.state)) return true;
+        if (!s.png) return false;
+        sink.write(reinterpret_cast<const char*>(s.png->data()), s.png->size());
+        sink.done();
+        return true;
+    });
+}
+
+bool HttpApi::admit_stream(httplib::Response& res) {
+    if (++open_streams_ > config_.limits.max_streams) {
+        --open_streams_;
+        res.set_header("Retry-After", "5");
+        send_error(res, 503, "too many open streams (limit " + std::to_string(config_.limits.max_streams) + ")");
+        return false;
+    }
+    res.set_header("Cache-Control", "no-cache");
+    return true;
+}
+
+// multipart/x-mixed-replace: one PNG part per finished pass (the latest frame wins, none is
+// queued), then the closing boundary once the job has ended.
+void HttpApi::stream(const std::shared_ptr<Job>& job, httplib::Response& res) {
+    if (!admit_stream(res)) return;
+    res.set_chunked_content_provider(
+        "multipart/x-mixed-replace; boundary=frame",
+        [this, job, sent = uint64_t(0)](size_t, httplib::DataSink& sink) mutable {
+            if (!sink.is_writable()) return false;
+            const JobSnapshot s = job->wait(sent, kPoll);
+            if (s.frame > sent && s.png) {
+                const std::string head = "--frame\r\nContent-Type: image/png\r\nContent-Length: " +
+                                         std::to_string(s.png->size()) + "\r\n\r\n";
+                if (!write(sink, head) || !sink.write(reinterpret_cast<const char*>(s.png->data()), s.png->size()) ||
+                    !write(sink, "\r\n"))
+                    return false;
+                sent = s.frame;
+            }
+            if ((is_final(s.state) && s.frame == sent) || stopping_) {
+                write(sink, "--frame--\r\n");
+                sink.done();
+            }
+            return true;
+        },
+        [this](bool) { --open_streams_; });
+}
+
+// Server-Sent Events: the job's status after every pass, then a final `done` event.
+void HttpApi::events(const std::shared_ptr<Job>& job, httplib::Response& res) {
+    if (!admit_stream(res)) return;
+    res.set_chunked_content_provider(
+        "text/event-stream",
+        [this, job, sent = uint64_t(0), last_write = Clock::now()](size_t, httplib::DataSink& sink) mutable {
+            if (!sink.is_writable()) return false;
+            const JobSnapshot s = job->wait(sent, kPoll);
+            const bool final = is_final(s.state) || stopping_;
+            if (s.frame > sent || final) {
+                sent = s.frame;
+                last_write = Clock::now();
+                if (!write(sink, "id: " + std::to_string(s.frame) + "\nevent: " + (final ? "done" : "progress") +
+                                     "\ndata: " + job->status().dump() + "\n\n"))
+                    return false;
+                if (final) sink.done();
+            } else if (Clock::now() - last_write > kPing) {
+                last_write = Clock::now();
+                return write(sink, ": ping\n\n");
+            }
+            return true;
+        },
+        [this](bool) { --open_streams_; });
+}
+
+void HttpApi::install(httplib::Server& server) {
+    server.set_payload_max_length(config_.limits.max_body_bytes);
+    server.set_read_timeout(10, 0);
+    server.set_write_timeout(30, 0);
+    server.set_keep_alive_max_count(5);
+    server.set_keep_alive_timeout(5);
+    server.set_pre_routing_handler([](const httplib::Request&, httplib::Response&) {
+        t_request_start = Clock::now();
+        return httplib::Server::HandlerResponse::Unhandled;
+    });
+    server.set_logger([](const httplib::Request& req, const httplib::Response& res) {
+        const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t_request_start).count();
+        spdlog::info("{} {} {} {}B {:.1f}ms", req.method, req.path, res.status, res.body.size(), ms);
+    });
+    // Every error gets a JSON body, also those cpp-httplib answers itself (404, 413, ...).
+    server.set_error_handler(httplib::Server::HandlerWithResponse(
+        [](const httplib::Request&, httplib::Response& res) {
+            if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+            send_error(res, res.status, reason(res.status));
+            return httplib::Server::HandlerResponse::Handled;
+        }));
+    server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {
+        std::string what = "internal error";
+        try {
+            std::rethrow_exception(e);
+        } catch (const std::exception& ex) {
+            what = ex.what();
+        } catch (...) {
+        }
+        spdlog::error("request failed: {}", what);
+        send_error(res, 500, what);
+    });
+
+    server.Post("/render", [this](const httplib::Request& req, httplib::Response& res) { render(req, res); });
+    server.Post("/jobs", [this](const httplib::Request& req, httplib::Response& res) { submit(req, res); });
+    server.Get("/jobs", [this](const httplib::Request&, httplib::Response& res) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const auto& job : jobs_.list()) list.push_back(job->status());
+        send_json(res, list);
+    });
+    const std::string job = R"(/jobs/([0-9a-f]{16}))";
+    server.Get(job, [this](const httplib::Request& req, httplib::Response& res) {
+        if (auto j = job_or_404(req, res)) send_json(res, j->status());
+    });
+    server.Delete(job, [this](const httplib::Request& req, httplib::Response& res) {
+        if (auto j = job_or_404(req, res)) {
+            j->cancel();
+            send_json(res, j->status());
+        }
+    });
+    server.Get(job + "/image.png", [this](const httplib::Request& req, httplib::Response& res) {
+        auto j = job_or_404(req, res);
+        if (!j) return;
+        const JobSnapshot s = j->snapshot();
+        if (!s.png) return send_error(res, 409, "no pass has finished yet");
+        res.set_content(reinterpret_cast<const char*>(s.png->data()), s.png->size(), "image/png");
+    });
+    server.Get(job + "/image.pfm", [this](const httplib::Request& req, httplib::Response& res) {
+        auto j = job_or_404(req, res);
+        if (!j) return;
+        const JobSnapshot s = j->snapshot();
+        if (!s.image) return send_error(res, 409, "no pass has finished yet");
+        const std::vector<uint8_t> pfm = encode_pfm(*s.image);
+        res.set_content(reinterpret_cast<const char*>(pfm.data()), pfm.size(), "image/x-portable-floatmap");
+    });
+    server.Get(job + "/stream", [this](const httplib::Request& req, httplib::Response& res) {
+        if (auto j = job_or_404(req, res)) stream(j, res);
+    });
+    server.Get(job + "/events", [this](const httplib::Request& req, httplib::Response& res) {
+        if (auto j = job_or_404(req, res)) events(j, res);
+    });
+    server.Get("/presets", [this](const httplib::Request&, httplib::Response& res) {
+        send_json(res, list_presets(config_.scenes));
+    });
+    server.Get(R"(/presets/([A-Za-z0-9_-]+))", [this](const httplib::Request& req, httplib::Response& res) {
+        const auto file = preset_path(config_.scenes, req.matches[1]);
+        if (file.empty()) return send_error(res, 404, "no preset " + std::string(req.matches[1]));
+        const std::vector<uint8_t> text = read_file(file.string(), size_t(16) << 20);
+        res.set_content(reinterpret_cast<const char*>(text.data()), text.size(), "application/json");
+    });
+    server.Get("/health", [this](const httplib::Request&, httplib::Response& res) {
+        send_json(res, {{"status", "ok"},
+                        {"jobs_running", jobs_.running()},
+                        {"jobs_queued", jobs_.queued()},
+                        {"open_streams", open_streams_.load()},
+                        {"render_threads", pool_.size()}});
+    });
+    if (!server.set_mount_point("/", config_.web.string()))
+        spdlog::warn("web folder {} not found: the page is not served", config_.web.string());
+}
+
+}  // namespace glint

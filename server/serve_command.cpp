@@ -1,0 +1,55 @@
+// `glint serve`: the render service until SIGINT or SIGTERM, then a graceful stop and exit 0.
+#include <csignal>
+
+#include <spdlog/spdlog.h>
+
+#include "commands.h"
+#include "service.h"
+
+namespace glint {
+namespace {
+
+struct ServeOptions {
+    std::string host = "127.0.0.1";
+    int port = 8080;
+    unsigned threads = 0;
+    ServiceConfig config;
+};
+
+int run_serve(const ServeOptions& o) {
+    // Block the stop signals in every thread (they inherit the mask); this one waits for them.
+    sigset_t stop_signals;
+    sigemptyset(&stop_signals);
+    sigaddset(&stop_signals, SIGINT);
+    sigaddset(&stop_signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+    std::signal(SIGPIPE, SIG_IGN);  // a client that hangs up must not end the process
+    try {
+        Service service(o.config, o.host, o.port, o.threads);
+        int signal = 0;
+        sigwait(&stop_signals, &signal);
+        spdlog::info("received {}", signal == SIGINT ? "SIGINT" : "SIGTERM");
+        service.stop();
+    } catch (const std::exception& e) {
+        spdlog::error("{}", e.what());
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace
+
+std::function<int()> add_serve_command(CLI::App& app) {
+    auto o = std::make_shared<ServeOptions>();
+    CLI::App* cmd = app.add_subcommand("serve", "Run the HTTP render service");
+    cmd->add_option("--host", o->host, "Address to listen on (default 127.0.0.1: this machine only)");
+    cmd->add_option("--port", o->port, "Port (default 8080)")->check(CLI::Range(1, 65535));
+    cmd->add_option("--threads", o->threads, "Render threads shared by all jobs (default: all cores)");
+    cmd->add_option("--scenes", o->config.scenes, "Scene folder: presets and the only place meshes are read from");
+    cmd->add_option("--web", o->config.web, "Folder of the web page");
+    cmd->add_option("--max-jobs", o->config.limits.max_running, "Jobs rendering at once")->check(CLI::PositiveNumber);
+    cmd->add_option("--max-queued", o->config.limits.max_queued, "Jobs waiting before new ones get 429");
+    return [o] { return run_serve(*o); };
+}
+
+}  // namespace glint

@@ -1,0 +1,36 @@
+#include "service.h"
+
+#include <chrono>
+
+#include <spdlog/spdlog.h>
+
+namespace glint {
+
+Service::Service(const ServiceConfig& config, const std::string& host, int port, unsigned render_threads)
+    : pool_(render_threads), jobs_(pool_, config.limits), api_(jobs_, pool_, config) {
+    // HTTP work gets its own threads, many of them: each open stream holds one (cpp-httplib is
+    // blocking), and rendering never runs on them.
+    server_.new_task_queue = [] { return new httplib::ThreadPool(64); };
+    api_.install(server_);
+    port_ = port == 0 ? server_.bind_to_any_port(host) : (server_.bind_to_port(host, port) ? port : -1);
+    if (port_ < 0) throw std::runtime_error("cannot listen on " + host + ":" + std::to_string(port));
+    http_ = std::thread([this] { server_.listen_after_bind(); });
+    // cpp-httplib 0.11.4 hangs in stop() if it comes before the accept loop has started, so
+    // return only once it runs (it does within microseconds).
+    while (!server_.is_running()) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    spdlog::info("glint serving on http://{}:{} ({} render threads)", host, port_, pool_.size());
+}
+
+Service::~Service() { stop(); }
+
+void Service::stop() {
+    if (!http_.joinable()) return;
+    spdlog::info("shutting down: cancelling jobs, closing streams");
+    api_.shutdown();
+    jobs_.shutdown();
+    server_.stop();
+    http_.join();
+    spdlog::info("stopped");
+}
+
+}  // namespace glint
