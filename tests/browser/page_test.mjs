@@ -1,0 +1,124 @@
+// Drives glint's page in Debian's headless Chromium against a real `glint serve` on a free
+// loopback port: picks a size, sets the SPP slider, renders, sees the image change at least
+// twice, zooms and pans, saves a screenshot, cancels, and sees a server error shown next to the
+// scene field. Then stops the server with SIGTERM and expects a clean exit.
+// Usage: node page_test.mjs GLINT_BINARY SOURCE_DIR SCREENSHOT.png
+import { spawn } from "node:child_process";
+import net from "node:net";
+import { chromium } from "playwright-core";
+
+const [glint, source, screenshot] = process.argv.slice(2);
+const results = { passed: 0, failed: 0 };
+function check(what, ok, detail = "") {
+  console.log(`${ok ? "ok" : "FAILED"}: ${what}${ok || !detail ? "" : ` (${detail})`}`);
+  results[ok ? "passed" : "failed"] += 1;
+}
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+function freePort() {
+  return new Promise((resolve) => {
+    const probe = net.createServer().listen(0, "127.0.0.1", () => {
+      const { port } = probe.address();
+      probe.close(() => resolve(port));
+    });
+  });
+}
+
+async function waitFor(predicate, ms, what) {
+  const deadline = Date.now() + ms;
+  while (Date.now() < deadline) {
+    if (await predicate()) return true;
+    await sleep(100);
+  }
+  throw new Error(`timed out waiting for ${what}`);
+}
+
+// A hash of the image's current pixels (for a multipart <img>, its current frame).
+function imageHash() {
+  const img = document.getElementById("image");
+  if (!img.complete || !img.naturalWidth) return null;
+  const canvas = document.createElement("canvas");
+  canvas.width = img.naturalWidth;
+  canvas.height = img.naturalHeight;
+  const ctx = canvas.getContext("2d");
+  ctx.drawImage(img, 0, 0);
+  const data = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
+  let h = 0;
+  for (let i = 0; i < data.length; i += 3) h = (h * 31 + data[i]) >>> 0;
+  return `${canvas.width}x${canvas.height}:${h}`;
+}
+
+const port = await freePort();
+const base = `http://127.0.0.1:${port}`;
+const server = spawn(glint, ["serve", "--port", String(port), "--threads", "2", "--scenes", `${source}/scenes`, "--web", `${source}/web`],
+                     { stdio: ["ignore", "ignore", "inherit"] });
+const exited = new Promise((resolve) => server.on("exit", (code, signal) => resolve({ code, signal })));
+let browser;
+try {
+  await waitFor(async () => (await fetch(`${base}/health`).catch(() => null))?.ok, 10000, "the server");
+  browser = await chromium.launch({
+    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
+    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
+           "--disable-sync", "--no-first-run"],
+  });
+  const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
+  const pageErrors = [];
+  page.on("pageerror", (e) => pageErrors.push(e.message));
+  await page.goto(base);
+  await waitFor(() => page.evaluate(() => document.getElementById("scene-json").value.includes("camera")), 10000, "the preset");
+  check("the page loads the presets and shows cornell's JSON", (await page.inputValue("#preset")) === "cornell");
+
+  await page.selectOption("#size", "128x96");
+  await page.locator("#spp").fill("50");
+  const label = await page.textContent("#spp-label");
+  check("the logarithmic SPP slider reads 71×4 at its middle", label === "71×4 = 284", label);
+  await page.click("#render");
+  const frames = new Set();
+  await waitFor(async () => {
+    const h = await page.evaluate(imageHash);
+    if (h) frames.add(h);
+    return frames.size >= 3;
+  }, 60000, "the image to change twice");
+  check("the image changed at least twice while rendering", frames.size >= 3, `${frames.size} distinct frames`);
+  check("every frame has the chosen size", [...frames].every((f) => f.startsWith("128x96:")), [...frames].join(" "));
+  check("controls are fixed while a render runs", await page.isDisabled("#spp") && await page.isDisabled("#render"));
+  const spp = await page.textContent("#fig-spp");
+  check("live figures show the SPP done", /^\d+ \/ 284$/.test(spp), spp);
+
+  await page.click('button.zoom[data-zoom="4"]');
+  const widths = await page.evaluate(() => {
+    const img = document.getElementById("image");
+    return [img.naturalWidth, img.getBoundingClientRect().width];
+  });
+  check("4× zoom magnifies the image four times", widths[1] === 4 * widths[0], widths.join(" vs "));
+  await page.click('button.zoom[data-zoom="8"]');  // 1024×768: larger than the viewport
+  const view = await page.locator("#viewport").boundingBox();
+  await page.mouse.move(view.x + view.width / 2, view.y + view.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(view.x + view.width / 2 - 80, view.y + view.height / 2 - 40, { steps: 5 });
+  await page.mouse.up();
+  const scroll = await page.evaluate(() => document.getElementById("viewport").scrollLeft);
+  check("dragging pans the 8× zoomed image", scroll > 0, `scrollLeft ${scroll}`);
+  await page.screenshot({ path: screenshot });
+
+  await page.click("#cancel");
+  await waitFor(async () => ["cancelled", "done"].includes(await page.textContent("#fig-state")), 20000, "the job to end");
+  check("cancel ends the job and frees the controls", !(await page.isDisabled("#render")));
+  check("the PNG download link points at the job", /\/jobs\/[0-9a-f]{16}\/image\.png$/.test(await page.getAttribute("#download-png", "href")));
+
+  await page.fill("#scene-json", '{"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]}');
+  await page.click("#render");
+  await waitFor(() => page.isVisible("#scene-error"), 10000, "the error message");
+  const error = await page.textContent("#scene-error");
+  check("a server error is shown next to the scene field", error === "objects[0].radius: must be > 0", error);
+  check("the page raised no script errors", pageErrors.length === 0, pageErrors.join("; "));
+} catch (e) {
+  check("the browser session", false, e.message);
+} finally {
+  await browser?.close();
+  server.kill("SIGTERM");
+  const { code } = await exited;
+  check("SIGTERM stops the server cleanly (exit 0)", code === 0, `exit ${code}`);
+}
+console.log(`browser: ${results.passed} passed, ${results.failed} failed`);
+process.exit(results.failed ? 1 : 0);
