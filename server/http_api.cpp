@@ -163,6 +163,7 @@ void HttpApi::install(httplib::Server& server) {
     server.set_write_timeout(30, 0);
     server.set_keep_alive_max_count(5);
     server.set_keep_alive_timeout(5);
+    server.set_tcp_nodelay(true);  // small JSON replies must not wait for delayed ACKs (Nagle)
     server.set_pre_routing_handler([](const httplib::Request&, httplib::Response&) {
         t_request_start = Clock::now();
         return httplib::Server::HandlerResponse::Unhandled;
