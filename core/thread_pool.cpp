@@ -25,6 +25,11 @@ void ThreadPool::parallel_for(size_t count, const std::function<void(size_t)>& t
     batch_done_.wait(lock, [&] { return batch->finished == batch->count; });
 }
 
+size_t ThreadPool::pending_batches() const {
+    std::lock_guard lock(mutex_);
+    return batches_.size();
+}
+
 void ThreadPool::work() {
     std::unique_lock lock(mutex_);
     for (;;) {

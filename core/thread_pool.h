@@ -22,6 +22,8 @@ public:
     ThreadPool& operator=(const ThreadPool&) = delete;
 
     unsigned size() const { return static_cast<unsigned>(workers_.size()); }
+    // Batches with tasks not yet handed out (for monitoring and tests).
+    size_t pending_batches() const;
 
     // Runs task(i) for every i in [0, count) on the workers and returns when all have finished.
     // Must not be called from inside a task (the caller only waits).
@@ -36,7 +38,7 @@ private:
     };
     void work();
 
-    std::mutex mutex_;
+    mutable std::mutex mutex_;
     std::condition_variable work_ready_, batch_done_;
     std::deque<std::shared_ptr<Batch>> batches_;  // batches with indices left to hand out
     bool stopping_ = false;

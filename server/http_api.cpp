@@ -243,7 +243,8 @@ void HttpApi::install(httplib::Server& server) {
                         {"jobs_running", jobs_.running()},
                         {"jobs_queued", jobs_.queued()},
                         {"open_streams", open_streams_.load()},
-                        {"render_threads", pool_.size()}});
+                        {"render_threads", pool_.size()},
+                        {"render_batches_waiting", pool_.pending_batches()}});
     });
     if (!server.set_mount_point("/", config_.web.string()))
         spdlog::warn("web folder {} not found: the page is not served", config_.web.string());

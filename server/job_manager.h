@@ -16,7 +16,7 @@
 namespace glint {
 
 struct ServiceLimits {
-    unsigned max_running = 2;
+    unsigned max_running = 4;
     size_t max_queued = 16;
     size_t max_finished = 64;
     size_t max_body_bytes = size_t(16) << 20;

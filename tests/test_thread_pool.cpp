@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <future>
+#include <string>
 
 #include "thread_pool.h"
 
@@ -22,6 +24,36 @@ TEST(ThreadPool, SeveralCallersShareThePool) {
         callers.emplace_back([&] { pool.parallel_for(500, [&](size_t i) { total += long(i); }); });
     for (auto& t : callers) t.join();
     EXPECT_EQ(total.load(), 4L * 499 * 500 / 2);
+}
+
+TEST(ThreadPool, BatchesTakeTurns) {
+    // One worker, two callers: once both batches wait, their tasks alternate (round-robin), so
+    // a second job progresses while the first still has work.
+    ThreadPool pool(1);
+    std::mutex mutex;
+    std::string order;
+    std::promise<void> a_started, both_queued;
+    std::shared_future<void> go = both_queued.get_future().share();
+    auto record = [&](char c) {
+        std::lock_guard lock(mutex);
+        order += c;
+    };
+    std::thread a([&] {
+        pool.parallel_for(5, [&](size_t i) {
+            if (i == 0) {
+                a_started.set_value();
+                go.wait();
+            }
+            record('a');
+        });
+    });
+    a_started.get_future().wait();
+    std::thread b([&] { pool.parallel_for(5, [&](size_t) { record('b'); }); });
+    while (pool.pending_batches() < 2) std::this_thread::yield();
+    both_queued.set_value();
+    a.join();
+    b.join();
+    EXPECT_EQ(order, "aababababb");
 }
 
 }  // namespace
