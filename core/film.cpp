@@ -25,6 +25,17 @@ double Film::error_estimate() const {
     return std::sqrt(total / (3.0 * double(pixels_.size())));
 }
 
+void Film::merge(const Film& other) {
+    for (size_t i = 0; i < pixels_.size(); ++i) {
+        PixelSums& px = pixels_[i];
+        const PixelSums& o = other.pixels_[i];
+        px.sum += o.sum;
+        px.sum_sq += o.sum_sq;
+        px.count += o.count;
+        px.dropped += o.dropped;
+    }
+}
+
 uint64_t Film::dropped() const {
     uint64_t total = 0;
     for (const PixelSums& px : pixels_) total += px.dropped;

@@ -35,6 +35,11 @@ public:
         ++px.count;
     }
     const PixelSums& pixel(int x, int y) const { return pixels_[size_t(y) * width_ + x]; }
+    std::vector<PixelSums>& pixels() { return pixels_; }
+    const std::vector<PixelSums>& pixels() const { return pixels_; }
+
+    // Adds another film's sums (of other samples of the same image), pixel by pixel.
+    void merge(const Film& other);
 
     // The mean of each pixel's samples (0 where it has none yet).
     Image mean() const;

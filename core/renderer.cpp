@@ -1,5 +1,8 @@
 #include "renderer.h"
 
+#include <stdexcept>
+#include <string>
+
 #include "sampling.h"
 
 namespace glint {
@@ -24,6 +27,8 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
       tiles_y_((settings.height + kTileSize - 1) / kTileSize) {
     const uint32_t round = samples_per_round(settings_.filter);
     settings_.spp = std::max(round, (settings_.spp + round - 1) / round * round);
+    if (settings_.first_sample % round != 0)
+        throw std::invalid_argument("the first sample must be a multiple of " + std::to_string(round));
 }
 
 Rgb RenderJob::sample(int x, int y, uint32_t index) const {
@@ -93,7 +98,8 @@ StopReason RenderJob::run(ThreadPool& pool, const std::function<void(const Progr
     while (spp_done_ < settings_.spp) {
         // A stopped pass leaves some tiles with more samples than others; each pixel's own
         // count keeps its mean right.
-        if (!render_pass(pool, spp_done_, spp_done_ + pass)) break;
+        const uint32_t first = settings_.first_sample + spp_done_;
+        if (!render_pass(pool, first, first + pass)) break;
         spp_done_ += pass;
         const Progress p = progress();
         if (on_pass) on_pass(p);

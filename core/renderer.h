@@ -25,6 +25,9 @@ inline uint32_t samples_per_round(Filter f) { return f == Filter::tent ? 4 : 1; 
 struct RenderSettings {
     int width = 1024, height = 768;
     uint32_t spp = 64;  // rounded up to a multiple of samples_per_round(filter)
+    // Renders samples [first_sample, first_sample + spp) of every pixel: a part of a job split
+    // over machines. Must be a multiple of samples_per_round(filter).
+    uint32_t first_sample = 0;
     Filter filter = Filter::tent;
     uint64_t seed = 0;
     Encoding encoding = Encoding::gamma22;

@@ -9,5 +9,6 @@ namespace glint {
 std::function<int()> add_render_command(CLI::App& app);
 std::function<int()> add_trace_rays_command(CLI::App& app);
 std::function<int()> add_serve_command(CLI::App& app);
+std::function<int()> add_merge_command(CLI::App& app);
 
 }  // namespace glint

@@ -10,6 +10,7 @@ int main(int argc, char** argv) {
     const std::map<std::string, std::function<int()>> commands = {
         {"render", glint::add_render_command(app)},
         {"serve", glint::add_serve_command(app)},
+        {"merge", glint::add_merge_command(app)},
         {"trace-rays", glint::add_trace_rays_command(app)},
     };
     CLI11_PARSE(app, argc, argv);

@@ -1,21 +1,27 @@
-// `glint render`: a scene file to PNG (and optionally PFM), with progress on the terminal.
-// Ctrl-C stops the render and still writes the image rendered so far.
+// `glint render`: scene files to PNG (and optionally PFM), or one scene's sample range to a
+// partial file, with progress on the terminal. Ctrl-C stops the render and still writes the
+// image rendered so far.
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
+#include <sstream>
+
+#include <spdlog/spdlog.h>
 
 #include "commands.h"
 #include "files.h"
+#include "fingerprint.h"
+#include "partial_file.h"
 #include "progress_bar.h"
 #include "scene_loader.h"
-
-#include <spdlog/spdlog.h>
 
 namespace glint {
 namespace {
 
 struct RenderOptions {
-    std::string scene, output, hdr;
+    std::vector<std::string> scenes;
+    std::string output, hdr, samples, partial;
     std::optional<uint32_t> spp;
     std::optional<int> width, height;
     std::optional<uint64_t> seed;
@@ -24,10 +30,26 @@ struct RenderOptions {
     double target_error = 0, time_limit = 0;
 };
 
+// Where one scene's results go.
+struct Outputs {
+    std::string png, hdr, partial;
+};
+
 RenderJob* g_interruptible = nullptr;
 
 void on_interrupt(int) {
     if (g_interruptible) g_interruptible->cancel();  // an atomic store: async-signal-safe
+}
+
+// "A:B" -> samples [A, B).
+void apply_sample_range(const std::string& range, RenderSettings& s) {
+    unsigned first = 0, end = 0;
+    char colon = 0;
+    std::istringstream in(range);
+    if (!(in >> first >> colon >> end) || colon != ':' || !in.eof() || end <= first)
+        throw SceneError("--samples", "must be A:B with A < B (got \"" + range + "\")");
+    s.first_sample = first;
+    s.spp = end - first;
 }
 
 void apply_overrides(const RenderOptions& o, RenderSettings& s) {
@@ -36,59 +58,123 @@ void apply_overrides(const RenderOptions& o, RenderSettings& s) {
     if (o.height) s.height = *o.height;
     if (o.seed) s.seed = *o.seed;
     if (o.encoding) s.encoding = *o.encoding == "srgb" ? Encoding::srgb : Encoding::gamma22;
+    if (!o.samples.empty()) apply_sample_range(o.samples, s);
     s.target_error = o.target_error;
     s.time_limit = o.time_limit;
 }
 
-int run_render(const RenderOptions& o) {
+void write_outputs(const RenderJob& job, const LoadedScene& loaded, const Outputs& out) {
+    const Image image = job.film().mean();
+    if (!out.png.empty()) write_file(out.png, encode_png(image, job.settings().encoding));
+    if (!out.hdr.empty()) write_file(out.hdr, encode_pfm(image));
+    if (out.partial.empty()) return;
+    Partial part;
+    part.fingerprint = fingerprint(*loaded.scene, job.settings());
+    part.first_sample = job.settings().first_sample;
+    part.end_sample = job.settings().first_sample + job.progress().spp_done;
+    part.encoding = job.settings().encoding;
+    part.film = job.film();
+    write_file(out.partial, encode_partial(part));
+}
+
+// Renders one scene; returns the exit status (0 done, 1 failed, 130 interrupted).
+int render_scene(const RenderOptions& o, const std::string& scene, const Outputs& out, ThreadPool& pool) {
     LoadedScene loaded;
     try {
-        loaded = load_scene(o.scene);
+        loaded = load_scene(scene);
         apply_overrides(o, loaded.settings);
         check_settings(loaded.settings, SceneLimits{});
+        if (loaded.settings.first_sample % samples_per_round(loaded.settings.filter) != 0)
+            throw SceneError("--samples", "must start at a multiple of " +
+                                              std::to_string(samples_per_round(loaded.settings.filter)) +
+                                              " (the tent filter renders whole rounds of 4 subpixels)");
     } catch (const SceneError& e) {
-        std::fprintf(stderr, "glint: %s: %s\n", o.scene.c_str(), e.what());
+        std::fprintf(stderr, "glint: %s: %s\n", scene.c_str(), e.what());
         return 1;
     }
     const Geometry& g = loaded.scene->geometry();
-    spdlog::info("{}: {} spheres, {} triangles ({} degenerate, ignored), {} lights; {}x{}, {} spp", o.scene,
+    spdlog::info("{}: {} spheres, {} triangles ({} degenerate, ignored), {} lights; {}x{}, {} spp", scene,
                  g.sphere_count(), g.triangle_count(), g.degenerate_triangles(), loaded.scene->lights().size(),
                  loaded.settings.width, loaded.settings.height, loaded.settings.spp);
-    ThreadPool pool(o.threads);
     RenderJob job(loaded.scene, loaded.settings);
     ProgressBar bar(stderr);
     g_interruptible = &job;
-    struct sigaction action {};
-    action.sa_handler = on_interrupt;
-    action.sa_flags = SA_RESETHAND;  // a second Ctrl-C ends the process at once
-    sigaction(SIGINT, &action, nullptr);
     const StopReason reason = job.run(pool, [&](const Progress& p) { bar.update(p); });
     bar.finish();
     g_interruptible = nullptr;
-
-    const Image image = job.film().mean();
     try {
-        write_file(o.output, encode_png(image, job.settings().encoding));
-        if (!o.hdr.empty()) write_file(o.hdr, encode_pfm(image));
+        write_outputs(job, loaded, out);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "glint: %s\n", e.what());
         return 1;
     }
     const Progress p = job.progress();
     std::printf("%s: %s; %u spp at %dx%d in %.2f s, %.3g samples/s, estimated RMSE %.4g, %llu non-finite samples dropped\n",
-                o.output.c_str(), to_string(reason), p.spp_done, job.settings().width, job.settings().height, p.seconds,
-                p.samples_per_second, p.error_estimate, static_cast<unsigned long long>(p.dropped));
+                (out.png.empty() ? out.partial : out.png).c_str(), to_string(reason), p.spp_done, job.settings().width,
+                job.settings().height, p.seconds, p.samples_per_second, p.error_estimate,
+                static_cast<unsigned long long>(p.dropped));
     return reason == StopReason::cancelled ? 130 : 0;
+}
+
+// Several scene files, or folders of them, rendered one after another into the output folder;
+// a scene that fails does not stop the others.
+int render_batch(const RenderOptions& o, ThreadPool& pool) {
+    std::vector<std::filesystem::path> scenes;
+    for (const auto& arg : o.scenes) {
+        if (!std::filesystem::is_directory(arg)) {
+            scenes.emplace_back(arg);
+            continue;
+        }
+        std::vector<std::filesystem::path> found;
+        for (const auto& entry : std::filesystem::directory_iterator(arg))
+            if (entry.path().extension() == ".json") found.push_back(entry.path());
+        std::sort(found.begin(), found.end());
+        scenes.insert(scenes.end(), found.begin(), found.end());
+    }
+    std::filesystem::create_directories(o.output);
+    if (!o.hdr.empty()) std::filesystem::create_directories(o.hdr);
+    int failed = 0;
+    for (const auto& scene : scenes) {
+        const std::string stem = scene.stem().string();
+        Outputs out{(std::filesystem::path(o.output) / (stem + ".png")).string(),
+                    o.hdr.empty() ? "" : (std::filesystem::path(o.hdr) / (stem + ".pfm")).string(), ""};
+        const int status = render_scene(o, scene.string(), out, pool);
+        if (status == 130) return 130;
+        failed += status != 0;
+    }
+    std::printf("%zu scenes: %zu rendered, %d failed\n", scenes.size(), scenes.size() - size_t(failed), failed);
+    return failed ? 1 : 0;
+}
+
+int run_render(const RenderOptions& o) {
+    struct sigaction action {};
+    action.sa_handler = on_interrupt;
+    action.sa_flags = SA_RESETHAND;  // a second Ctrl-C ends the process at once
+    sigaction(SIGINT, &action, nullptr);
+    ThreadPool pool(o.threads);
+    const bool batch = o.scenes.size() > 1 || std::filesystem::is_directory(o.scenes.front());
+    if (batch && (!o.samples.empty() || !o.partial.empty())) {
+        std::fprintf(stderr, "glint: --samples and --partial take a single scene file\n");
+        return 2;
+    }
+    if (o.output.empty() && o.partial.empty()) {
+        std::fprintf(stderr, "glint: give -o (a PNG, or a folder for several scenes) or --partial\n");
+        return 2;
+    }
+    if (batch) return render_batch(o, pool);
+    return render_scene(o, o.scenes.front(), Outputs{o.output, o.hdr, o.partial}, pool);
 }
 
 }  // namespace
 
 std::function<int()> add_render_command(CLI::App& app) {
     auto o = std::make_shared<RenderOptions>();
-    CLI::App* cmd = app.add_subcommand("render", "Render a scene file to a PNG image");
-    cmd->add_option("scene", o->scene, "Scene JSON file")->required();
-    cmd->add_option("-o,--output", o->output, "PNG file to write")->required();
-    cmd->add_option("--hdr", o->hdr, "Also write the linear image as PFM");
+    CLI::App* cmd = app.add_subcommand("render", "Render scene files to PNG images");
+    cmd->add_option("scenes", o->scenes, "Scene JSON files, or folders of them")->required();
+    cmd->add_option("-o,--output", o->output, "PNG file to write (a folder when rendering several scenes)");
+    cmd->add_option("--hdr", o->hdr, "Also write the linear image as PFM (a folder for several scenes)");
+    cmd->add_option("--samples", o->samples, "Render only samples A..B-1 of every pixel (A:B), for --partial");
+    cmd->add_option("--partial", o->partial, "Write the per-pixel sums to this file, for glint merge");
     cmd->add_option("--spp", o->spp, "Samples per pixel (film.spp)");
     cmd->add_option("--width", o->width, "Image width (film.width)");
     cmd->add_option("--height", o->height, "Image height (film.height)");

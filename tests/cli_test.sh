@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # End-to-end checks of the glint command line: outputs, exit codes and error messages.
-# Usage: cli_test.sh GLINT_BINARY SHARED_DIR
+# Usage: cli_test.sh GLINT_BINARY SHARED_DIR SOURCE_DIR
 set -uo pipefail
 glint=$1
 shared=$2
+source=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 failures=0
@@ -35,6 +36,40 @@ check "a bad scene writes no image" test ! -e "$work/bad.png"
 check "--spp 0 exits 1 naming the field" bash -c "grep -q 'film.spp: must be in' '$work/stderr'"
 "$glint" render "$work/missing.json" -o "$work/x.png" 2> "$work/stderr"
 check "a missing scene file exits 1" grep -q "cannot open" "$work/stderr"
+
+# Batch mode: several files and a folder; a bad scene fails alone.
+mkdir -p "$work/batch"
+cp "$work/tiny.json" "$work/batch/a.json"
+sed 's/"spp": 4/"spp": 8/' "$work/tiny.json" > "$work/batch/b.json"
+"$glint" render "$work/batch" "$work/bad.json" -o "$work/out" --hdr "$work/hdr" > "$work/stdout" 2> "$work/stderr"
+check "a batch with a bad scene exits 1" test $? -eq 1
+check "a batch renders the good scenes" test -s "$work/out/a.png" -a -s "$work/out/b.png" -a -s "$work/hdr/b.pfm"
+check "a batch ends with a summary" grep -q "^3 scenes: 2 rendered, 1 failed$" "$work/stdout"
+check "a batch prints one line per scene" test "$(grep -c "completed;" "$work/stdout")" -eq 2
+
+# One job split over three processes running at once, merged: the whole render's image.
+ranges=$(for i in 0 1 2; do "$source/docker/k8s/sample-range" $i 3 40; done | tr '\n' ' ')
+check "sample-range tiles 40 spp in 3 parts of whole rounds" test "$ranges" = "0:12 12:24 24:40 "
+for r in $ranges; do
+  "$glint" render "$work/tiny.json" --samples "$r" --partial "$work/part-$r" --spp 999 2>/dev/null >/dev/null &
+done
+wait
+"$glint" render "$work/tiny.json" -o "$work/whole.png" --hdr "$work/whole.pfm" --spp 40 2>/dev/null >/dev/null
+"$glint" merge "$work/merged.png" --hdr "$work/merged.pfm" "$work"/part-* > "$work/stdout"
+check "merge reports the samples it joined" grep -q "3 parts, samples \[0, 40)" "$work/stdout"
+check "the merged PNG equals the whole render's" cmp -s "$work/merged.png" "$work/whole.png"
+check "the merged PFM equals the whole render's" cmp -s "$work/merged.pfm" "$work/whole.pfm"
+"$glint" merge "$work/gap.png" "$work/part-0:12" "$work/part-24:40" 2> "$work/stderr"
+check "merge refuses a gap" grep -q "samples \[12, 24) are missing" "$work/stderr"
+for parts in 1 2 3 5 7 10; do
+  covered=0 ok=1
+  for i in $(seq 0 $((parts - 1))); do
+    r=$("$source/docker/k8s/sample-range" "$i" "$parts" 37)
+    [ "${r%%:*}" -eq "$covered" ] || ok=0
+    covered=${r##*:}
+  done
+  check "sample-range: $parts parts tile 37 spp (rounded to 40) without gaps" test "$ok" -eq 1 -a "$covered" -eq 40
+done
 
 if [ -f "$shared/rays/cornell_box_primary.rays" ]; then
   "$glint" trace-rays "$shared/scenes/meshes/cornell_box.obj" "$shared/rays/cornell_box_primary.rays" \

@@ -1,0 +1,126 @@
+#include "partial_file.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <string>
+
+#include "fingerprint.h"
+
+namespace glint {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "partial files are little-endian");
+constexpr char kMagic[8] = {'G', 'L', 'N', 'T', 'P', 'A', 'R', 'T'};
+constexpr uint32_t kVersion = 1;
+constexpr size_t kHeader = 40, kPixel = 64, kTrailer = 8;
+
+class Writer {
+public:
+    template <typename T>
+    void put(const T& v) {
+        const auto* p = reinterpret_cast<const uint8_t*>(&v);
+        bytes.insert(bytes.end(), p, p + sizeof v);
+    }
+    std::vector<uint8_t> bytes;
+};
+
+class Reader {
+public:
+    explicit Reader(const std::vector<uint8_t>& b) : bytes_(b) {}
+    template <typename T>
+    T get() {
+        T v;
+        std::memcpy(&v, &bytes_[at_], sizeof v);
+        at_ += sizeof v;
+        return v;
+    }
+
+private:
+    const std::vector<uint8_t>& bytes_;
+    size_t at_ = 0;
+};
+
+uint64_t checksum(const uint8_t* data, size_t size) {
+    Fnv1a h;
+    h.bytes(data, size);
+    return h.digest();
+}
+
+std::string range(const Partial& p) {
+    return "[" + std::to_string(p.first_sample) + ", " + std::to_string(p.end_sample) + ")";
+}
+
+}  // namespace
+
+std::vector<uint8_t> encode_partial(const Partial& p) {
+    Writer w;
+    w.bytes.reserve(kHeader + kPixel * p.film.pixels().size() + kTrailer);
+    w.bytes.insert(w.bytes.end(), kMagic, kMagic + 8);
+    w.put(kVersion);
+    w.put(uint32_t(p.film.width()));
+    w.put(uint32_t(p.film.height()));
+    w.put(p.first_sample);
+    w.put(p.end_sample);
+    w.put(uint32_t(p.encoding == Encoding::srgb ? 1 : 0));
+    w.put(p.fingerprint);
+    for (const PixelSums& px : p.film.pixels()) {
+        for (int c = 0; c < 3; ++c) w.put(px.sum[c]);
+        for (int c = 0; c < 3; ++c) w.put(px.sum_sq[c]);
+        w.put(px.count);
+        w.put(px.dropped);
+    }
+    w.put(checksum(w.bytes.data(), w.bytes.size()));
+    return std::move(w.bytes);
+}
+
+Partial decode_partial(const std::vector<uint8_t>& bytes) {
+    if (bytes.size() < kHeader + kTrailer || std::memcmp(bytes.data(), kMagic, 8) != 0)
+        throw PartialError("not a glint partial file");
+    uint64_t stored;
+    std::memcpy(&stored, &bytes[bytes.size() - kTrailer], kTrailer);
+    if (stored != checksum(bytes.data(), bytes.size() - kTrailer))
+        throw PartialError("checksum mismatch: the file is corrupt or truncated");
+    Reader r(bytes);
+    r.get<uint64_t>();  // magic
+    if (r.get<uint32_t>() != kVersion) throw PartialError("unsupported partial file version");
+    const auto width = r.get<uint32_t>(), height = r.get<uint32_t>();
+    if (width == 0 || height == 0 || bytes.size() != kHeader + kPixel * uint64_t(width) * height + kTrailer)
+        throw PartialError("size does not match the header");
+    Partial p;
+    p.first_sample = r.get<uint32_t>();
+    p.end_sample = r.get<uint32_t>();
+    if (p.end_sample <= p.first_sample) throw PartialError("empty or reversed sample range");
+    p.encoding = r.get<uint32_t>() == 1 ? Encoding::srgb : Encoding::gamma22;
+    p.fingerprint = r.get<uint64_t>();
+    p.film = Film(int(width), int(height));
+    for (PixelSums& px : p.film.pixels()) {
+        for (int c = 0; c < 3; ++c) px.sum[c] = r.get<double>();
+        for (int c = 0; c < 3; ++c) px.sum_sq[c] = r.get<double>();
+        px.count = r.get<uint64_t>();
+        px.dropped = r.get<uint64_t>();
+    }
+    return p;
+}
+
+Partial merge_partials(std::vector<Partial> parts) {
+    if (parts.empty()) throw PartialError("no parts to merge");
+    std::sort(parts.begin(), parts.end(), [](const Partial& a, const Partial& b) { return a.first_sample < b.first_sample; });
+    Partial merged = std::move(parts.front());
+    for (size_t i = 1; i < parts.size(); ++i) {
+        const Partial& p = parts[i];
+        if (p.fingerprint != merged.fingerprint) throw PartialError("part " + range(p) + " is from another scene or settings");
+        if (p.film.width() != merged.film.width() || p.film.height() != merged.film.height())
+            throw PartialError("part " + range(p) + " has another image size");
+        if (p.first_sample < merged.end_sample)
+            throw PartialError("parts overlap: " + range(parts[i - 1]) + " and " + range(p));
+        if (p.first_sample > merged.end_sample)
+            throw PartialError("samples [" + std::to_string(merged.end_sample) + ", " + std::to_string(p.first_sample) +
+                               ") are missing");
+        merged.film.merge(p.film);
+        merged.end_sample = p.end_sample;
+    }
+    return merged;
+}
+
+}  // namespace glint

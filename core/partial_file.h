@@ -1,0 +1,45 @@
+// Partial renders: the per-pixel sums of samples [first, end) of a job, written by
+// `glint render --samples A:B --partial FILE` and combined by `glint merge`.
+//
+// Format (version 1, little-endian, no padding):
+//   offset  size  field
+//   0       8     magic "GLNTPART"
+//   8       4     uint32 version = 1
+//   12      4     uint32 width
+//   16      4     uint32 height
+//   20      4     uint32 first sample (inclusive)
+//   24      4     uint32 end sample (exclusive)
+//   28      4     uint32 PNG encoding (0 gamma 2.2, 1 sRGB)
+//   32      8     uint64 fingerprint of scene and settings (core/fingerprint.h)
+//   40      64·W·H per pixel, rows top to bottom: float64 sum r, g, b; float64 sum of squares
+//                 r, g, b; uint64 sample count; uint64 dropped (non-finite) samples
+//   end-8   8     uint64 FNV-1a of every byte before it
+#pragma once
+
+#include <stdexcept>
+#include <vector>
+
+#include "film.h"
+#include "image_io.h"
+
+namespace glint {
+
+struct PartialError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+struct Partial {
+    uint64_t fingerprint = 0;
+    uint32_t first_sample = 0, end_sample = 0;
+    Encoding encoding = Encoding::gamma22;
+    Film film{1, 1};
+};
+
+std::vector<uint8_t> encode_partial(const Partial& partial);
+Partial decode_partial(const std::vector<uint8_t>& bytes);  // throws PartialError
+
+// Combines parts of one job: same fingerprint and size, sample ranges that neither overlap nor
+// leave gaps (in any order given). Sums are added in order of the ranges. Throws PartialError.
+Partial merge_partials(std::vector<Partial> parts);
+
+}  // namespace glint

@@ -1,0 +1,96 @@
+// Split jobs: parts of a render merge into the image of the whole, and the partial format
+// refuses what it must.
+#include <gtest/gtest.h>
+
+#include "fingerprint.h"
+#include "partial_file.h"
+#include "test_support.h"
+
+namespace glint {
+namespace {
+
+LoadedScene small_cornell() {
+    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    s.settings.width = 40;
+    s.settings.height = 30;
+    return s;
+}
+
+// Renders samples [first, end) and returns them as a partial file's bytes.
+std::vector<uint8_t> render_part(LoadedScene s, uint32_t first, uint32_t end) {
+    s.settings.first_sample = first;
+    s.settings.spp = end - first;
+    const auto job = testing::render(s);
+    Partial p;
+    p.fingerprint = fingerprint(*s.scene, s.settings);
+    p.first_sample = first;
+    p.end_sample = end;
+    p.film = job->film();
+    return encode_partial(p);
+}
+
+TEST(Partial, ThreePartsMergeIntoTheWholeRender) {
+    LoadedScene s = small_cornell();
+    s.settings.spp = 48;
+    const auto whole = testing::render(s);
+    const Partial merged = merge_partials({decode_partial(render_part(s, 32, 48)), decode_partial(render_part(s, 0, 12)),
+                                           decode_partial(render_part(s, 12, 32))});
+    EXPECT_EQ(merged.first_sample, 0u);
+    EXPECT_EQ(merged.end_sample, 48u);
+    // Every sample is the same (streams keyed by sample index); only the order of the additions
+    // differs (samples one by one, against three partial sums), so the sums agree to rounding.
+    double worst = 0;
+    for (size_t i = 0; i < merged.film.pixels().size(); ++i) {
+        const PixelSums &a = whole->film().pixels()[i], &b = merged.film.pixels()[i];
+        ASSERT_EQ(a.count, b.count);
+        for (int c = 0; c < 3; ++c)
+            if (a.sum[c] != 0) worst = std::max(worst, std::fabs(a.sum[c] - b.sum[c]) / std::fabs(a.sum[c]));
+    }
+    EXPECT_LT(worst, 1e-14);
+    // After the mean is rounded to float and to 8 bits, the images are the same bytes.
+    EXPECT_EQ(encode_pfm(merged.film.mean()), encode_pfm(whole->film().mean()));
+    EXPECT_EQ(encode_png(merged.film.mean(), Encoding::gamma22), encode_png(whole->film().mean(), Encoding::gamma22));
+}
+
+TEST(Partial, RefusesGapsOverlapsForeignPartsAndDamage) {
+    const LoadedScene s = small_cornell();
+    const std::vector<uint8_t> a = render_part(s, 0, 8), b = render_part(s, 8, 16), c = render_part(s, 16, 24);
+    auto error = [](std::vector<std::vector<uint8_t>> files) -> std::string {
+        try {
+            std::vector<Partial> parts;
+            for (const auto& f : files) parts.push_back(decode_partial(f));
+            merge_partials(std::move(parts));
+        } catch (const PartialError& e) {
+            return e.what();
+        }
+        return "no error";
+    };
+    EXPECT_EQ(error({a, c}), "samples [8, 16) are missing");
+    EXPECT_EQ(error({a, b, b}), "parts overlap: [8, 16) and [8, 16)");
+    LoadedScene other = small_cornell();
+    other.settings.seed = 7;
+    EXPECT_EQ(error({a, render_part(other, 8, 16)}), "part [8, 16) is from another scene or settings");
+    std::vector<uint8_t> flipped = b;
+    flipped[100] ^= 1;
+    EXPECT_EQ(error({a, flipped}), "checksum mismatch: the file is corrupt or truncated");
+    EXPECT_EQ(error({std::vector<uint8_t>(a.begin(), a.begin() + 500)}), "checksum mismatch: the file is corrupt or truncated");
+    EXPECT_EQ(error({std::vector<uint8_t>(20, 0)}), "not a glint partial file");
+    EXPECT_EQ(error({}), "no parts to merge");
+    EXPECT_EQ(error({b, a, c}), "no error");
+}
+
+TEST(Partial, FingerprintsDependOnWhatDecidesPixels) {
+    const LoadedScene s = small_cornell();
+    RenderSettings settings = s.settings;
+    const uint64_t base = fingerprint(*s.scene, settings);
+    settings.spp = 999;
+    settings.first_sample = 400;
+    settings.encoding = Encoding::srgb;
+    EXPECT_EQ(fingerprint(*s.scene, settings), base);  // parts differ in these
+    settings.width += 1;
+    EXPECT_NE(fingerprint(*s.scene, settings), base);
+    EXPECT_NE(fingerprint(*load_scene(GLINT_SCENES_DIR "/caustic.json").scene, s.settings), base);
+}
+
+}  // namespace
+}  // namespace glint
