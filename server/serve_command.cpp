@@ -42,7 +42,8 @@ int run_serve(const ServeOptions& o) {
 std::function<int()> add_serve_command(CLI::App& app) {
     auto o = std::make_shared<ServeOptions>();
     CLI::App* cmd = app.add_subcommand("serve", "Run the HTTP render service");
-    cmd->add_option("--host", o->host, "Address to listen on (default 127.0.0.1: this machine only)");
+    cmd->add_option("--host", o->host, "Address to listen on (default 127.0.0.1: this machine only)")
+        ->envname("GLINT_HOST");
     cmd->add_option("--port", o->port, "Port (default 8080)")->check(CLI::Range(1, 65535));
     cmd->add_option("--threads", o->threads, "Render threads shared by all jobs (default: all cores)");
     cmd->add_option("--scenes", o->config.scenes, "Scene folder: presets and the only place meshes are read from");
