@@ -127,8 +127,7 @@ std::string format(const char* f, Args... args) {
 
 void bench_mesh(const std::string& shared, const std::string& name) {
     const ObjMesh mesh = load_obj(shared + "/scenes/meshes/" + name + ".obj", size_t(1) << 30);
-    std::vector<Triangle> triangles;
-    for (const auto& t : mesh.triangles) triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
+    const std::vector<Triangle> triangles = to_triangles(mesh);
     const size_t n_tris = triangles.size();
     Geometry glint_bvh;
     const double glint_build = median_seconds([&] { glint_bvh = Geometry({}, triangles, Accelerator::bvh); });

@@ -38,6 +38,14 @@ ObjMesh parse_obj(const std::string& text) {
     return mesh;
 }
 
+std::vector<Triangle> to_triangles(const ObjMesh& mesh, const Vec3& scale, const Vec3& translate) {
+    auto place = [&](uint32_t index) { return mesh.vertices[index] * scale + translate; };
+    std::vector<Triangle> out;
+    out.reserve(mesh.triangles.size());
+    for (const auto& t : mesh.triangles) out.push_back({place(t[0]), place(t[1]), place(t[2])});
+    return out;
+}
+
 ObjMesh load_obj(const std::string& path, size_t max_bytes) {
     const std::vector<uint8_t> bytes = read_file(path, max_bytes);
     return parse_obj(std::string(bytes.begin(), bytes.end()));

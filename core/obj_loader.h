@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "math.h"
+#include "triangle.h"
 
 namespace glint {
 
@@ -24,5 +24,8 @@ struct ObjMesh {
 ObjMesh parse_obj(const std::string& text);
 // Reads and parses a file of at most max_bytes.
 ObjMesh load_obj(const std::string& path, size_t max_bytes);
+
+// The mesh's triangles in its numbering, each vertex placed at v·scale + translate.
+std::vector<Triangle> to_triangles(const ObjMesh& mesh, const Vec3& scale = Vec3{1}, const Vec3& translate = {});
 
 }  // namespace glint

@@ -246,11 +246,9 @@ private:
             if (!(max_component(abs(v * scale + translate)) <= limits_.max_coordinate))
                 at.fail("a vertex lies beyond the coordinate limit " + At::format(limits_.max_coordinate));
         const uint32_t material = parse_appearance(at);
-        auto place = [&](uint32_t index) { return mesh.vertices[index] * scale + translate; };
-        for (const auto& tri : mesh.triangles) {
-            triangles_.push_back({place(tri[0]), place(tri[1]), place(tri[2])});
-            material_of_prim_.push_back(material);
-        }
+        const std::vector<Triangle> placed = to_triangles(mesh, scale, translate);
+        triangles_.insert(triangles_.end(), placed.begin(), placed.end());
+        material_of_prim_.insert(material_of_prim_.end(), placed.size(), material);
     }
 
     ObjMesh load_mesh_file(const At& at) const {
@@ -308,6 +306,9 @@ void check_settings(const RenderSettings& s, const SceneLimits& limits) {
                                      std::to_string(limits.max_pixels));
     if (s.spp < 1 || s.spp > limits.max_spp)
         throw SceneError("film.spp", "must be in [1, " + std::to_string(limits.max_spp) + "]");
+    if (s.first_sample % samples_per_round(s.filter) != 0)
+        throw SceneError("--samples", "must start at a multiple of " + std::to_string(samples_per_round(s.filter)) +
+                                          " (the tent filter renders whole rounds of 4 subpixels)");
     if (!(s.target_error >= 0) || !std::isfinite(s.target_error)) throw SceneError("target_error", "must be >= 0");
     if (!(s.time_limit >= 0) || !std::isfinite(s.time_limit)) throw SceneError("time_limit", "must be >= 0");
 }

@@ -12,10 +12,10 @@ mkdir -p "$work"
 step() { echo "[test-image] $*" >&2; }
 
 need=()
-for p in podman runc debootstrap curl; do command -v "$p" >/dev/null || need+=("$p"); done
+for p in podman runc debootstrap curl python3; do command -v "$p" >/dev/null || need+=("$p"); done
 if ((${#need[@]})); then
   apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq -o DPkg::Lock::Timeout=600 podman runc debootstrap curl >/dev/null
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq -o DPkg::Lock::Timeout=600 "${need[@]}" >/dev/null
 fi
 
 # This host's cgroups need runc (crun refuses them), and podman may not raise ulimits beyond its own.

@@ -56,9 +56,9 @@ void Job::run(ThreadPool& pool) {
         publish(JobState::failed, render_.progress());
         return;
     }
-    spdlog::info("job {} {} ({}): {} spp in {:.2f} s, error {:.4g}", id_, to_string(snapshot().state),
-                 to_string(reason), snapshot().progress.spp_done, snapshot().progress.seconds,
-                 snapshot().progress.error_estimate);
+    const JobSnapshot last = snapshot();
+    spdlog::info("job {} {} ({}): {} spp in {:.2f} s, error {:.4g}", id_, to_string(last.state), to_string(reason),
+                 last.progress.spp_done, last.progress.seconds, last.progress.error_estimate);
 }
 
 void Job::cancel() {

@@ -84,10 +84,6 @@ int render_scene(const RenderOptions& o, const std::string& scene, const Outputs
         loaded = load_scene(scene);
         apply_overrides(o, loaded.settings);
         check_settings(loaded.settings, SceneLimits{});
-        if (loaded.settings.first_sample % samples_per_round(loaded.settings.filter) != 0)
-            throw SceneError("--samples", "must start at a multiple of " +
-                                              std::to_string(samples_per_round(loaded.settings.filter)) +
-                                              " (the tent filter renders whole rounds of 4 subpixels)");
     } catch (const SceneError& e) {
         std::fprintf(stderr, "glint: %s: %s\n", scene.c_str(), e.what());
         return 1;

@@ -25,14 +25,6 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-Geometry build_geometry(const ObjMesh& mesh) {
-    std::vector<Triangle> triangles;
-    triangles.reserve(mesh.triangles.size());
-    for (const auto& t : mesh.triangles)
-        triangles.push_back({mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]]});
-    return Geometry({}, std::move(triangles), Accelerator::bvh);
-}
-
 void trace(const Geometry& geometry, const std::vector<RayRecord>& rays, bool any_hit, ThreadPool& pool,
            std::vector<HitRecord>& hits) {
     constexpr size_t kChunk = 4096;
@@ -58,7 +50,7 @@ int run_trace_rays(const TraceOptions& o) {
         const ObjMesh mesh = load_obj(o.mesh, size_t(1) << 30);
         const std::vector<RayRecord> rays = read_rays(o.rays);
         auto start = std::chrono::steady_clock::now();
-        const Geometry geometry = build_geometry(mesh);
+        const Geometry geometry({}, to_triangles(mesh), Accelerator::bvh);
         const double build = seconds_since(start);
         ThreadPool pool(o.threads);
         std::vector<HitRecord> hits(rays.size());

@@ -248,8 +248,8 @@ TEST_F(Server, ASmallJobIsNotStarvedBehindALargeOne) {
     const std::string large = post("/jobs", R"({"preset": "cornell", "width": 128, "height": 96, "spp": 65536})", 202)["id"];
     for (int i = 0; i < 200 && get_json("/jobs/" + large)["spp_done"] == 0; ++i) std::this_thread::sleep_for(20ms);
     const std::string small = post("/jobs", R"({"preset": "cornell", "width": 32, "height": 24, "spp": 16})", 202)["id"];
-    // The pool hands out tiles of both jobs in turn: the small one finishes while the large one
-    // (hours of work) is still running.
+    // Both jobs render at once: the small one finishes while the large one (hours of work) is
+    // still running. (That their tiles alternate is proven by ThreadPool.BatchesTakeTurns.)
     EXPECT_EQ(wait_until_final(small)["state"], "done");
     EXPECT_EQ(get_json("/jobs/" + large)["state"], "running");
     client_->Delete(("/jobs/" + large).c_str());
