@@ -1,6 +1,7 @@
 // Axis-aligned boxes: Bounds3 in double for building, and the float box that BVH nodes store.
 #pragma once
 
+#include "float_rounding.h"
 #include "math.h"
 
 namespace glint {
@@ -29,20 +30,10 @@ struct FloatBox {
     static FloatBox enclosing(const Bounds3& b) {
         FloatBox f{};
         for (int a = 0; a < 3; ++a) {
-            f.lo[a] = round_down(b.lo[a]);
-            f.hi[a] = round_up(b.hi[a]);
+            f.lo[a] = to_float_down(b.lo[a]);
+            f.hi[a] = to_float_up(b.hi[a]);
         }
         return f;
-    }
-
-private:
-    static float round_down(double v) {
-        const float f = static_cast<float>(v);
-        return static_cast<double>(f) > v ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-    }
-    static float round_up(double v) {
-        const float f = static_cast<float>(v);
-        return static_cast<double>(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
     }
 };
 

@@ -13,6 +13,18 @@ constexpr double kTraversalCost = 1.0;  // relative to one primitive test
 // (and so the traversal stack) stays bounded whatever the input.
 constexpr int kSahDepth = 64;
 
+// The binary tree that SAH builds, before it is collapsed to four-wide nodes.
+struct BinaryNode {
+    FloatBox box;
+    uint32_t first;  // leaf: first position in build order; inner node: left child (right = first + 1)
+    uint32_t count;  // leaf: number of primitives (> 0); inner node: 0
+    bool is_leaf() const { return count != 0; }
+    double half_area() const {
+        const double x = double(box.hi[0]) - box.lo[0], y = double(box.hi[1]) - box.lo[1], z = double(box.hi[2]) - box.lo[2];
+        return x * y + y * z + z * x;
+    }
+};
+
 struct BuildPrim {
     Bounds3 bounds;
     Vec3 centre;
@@ -29,15 +41,13 @@ class Builder {
 public:
     explicit Builder(std::vector<BuildPrim> prims) : prims_(std::move(prims)) {}
 
-    Bvh::Output run() {
+    // The binary tree, and the primitives in the order its leaves cover them.
+    std::vector<BinaryNode> run(std::vector<uint32_t>& order) {
         nodes_.reserve(2 * prims_.size());
         nodes_.push_back({});
         build(0, 0, static_cast<uint32_t>(prims_.size()), 0);
-        Bvh::Output out;
-        out.nodes = std::move(nodes_);
-        out.prims.reserve(prims_.size());
-        for (const BuildPrim& p : prims_) out.prims.push_back(p.index);
-        return out;
+        for (const BuildPrim& p : prims_) order.push_back(p.index);
+        return std::move(nodes_);
     }
 
 private:
@@ -125,6 +135,63 @@ private:
     }
 
     std::vector<BuildPrim> prims_;
+    std::vector<BinaryNode> nodes_;
+};
+
+// Collapses the binary tree to four children per node: a node adopts its children's children,
+// largest surface area first, while it has fewer than four (Wald et al., "Getting rid of
+// packets", 2008, and madmann91/bvh's mini-tree collapse follow the same greedy rule).
+class Collapser {
+public:
+    explicit Collapser(const std::vector<BinaryNode>& binary) : binary_(binary) {}
+
+    std::vector<BvhNode> run() {
+        nodes_.reserve(binary_.size() / 2 + 1);
+        nodes_.emplace_back();
+        const BinaryNode& root = binary_[0];
+        if (root.is_leaf())
+            fill(0, {{0}}, 1);
+        else
+            fill(0, {{root.first, root.first + 1}}, 2);
+        return std::move(nodes_);
+    }
+
+private:
+    void fill(uint32_t node, std::array<uint32_t, 4> children, int size) {
+        while (size < 4) {
+            int widest = -1;
+            for (int c = 0; c < size; ++c)
+                if (!binary_[children[c]].is_leaf() &&
+                    (widest < 0 || binary_[children[c]].half_area() > binary_[children[widest]].half_area()))
+                    widest = c;
+            if (widest < 0) break;
+            const uint32_t left = binary_[children[widest]].first;
+            children[widest] = left;
+            children[size++] = left + 1;
+        }
+        for (int slot = 0; slot < 4; ++slot) set_slot(node, slot, slot < size ? &binary_[children[slot]] : nullptr);
+        for (int slot = 0; slot < size; ++slot) {
+            const BinaryNode& child = binary_[children[slot]];
+            if (child.is_leaf()) continue;
+            const auto index = static_cast<uint32_t>(nodes_.size());
+            nodes_.emplace_back();
+            nodes_[node].child[slot] = index;
+            fill(index, {{child.first, child.first + 1}}, 2);
+        }
+    }
+
+    void set_slot(uint32_t node, int slot, const BinaryNode* child) {
+        BvhNode& n = nodes_[node];
+        constexpr float inf = std::numeric_limits<float>::infinity();
+        for (int a = 0; a < 3; ++a) {
+            n.boxes.planes[2 * a][slot] = child ? child->box.lo[a] : inf;
+            n.boxes.planes[2 * a + 1][slot] = child ? child->box.hi[a] : -inf;
+        }
+        n.child[slot] = child && child->is_leaf() ? child->first : 0;
+        n.count[slot] = child ? child->count : 0;
+    }
+
+    const std::vector<BinaryNode>& binary_;
     std::vector<BvhNode> nodes_;
 };
 
@@ -137,10 +204,11 @@ Bvh Bvh::build(std::span<const Bounds3> prim_bounds) {
         if (!prim_bounds[i].empty())
             prims.push_back({prim_bounds[i], prim_bounds[i].centre(), i});
     Bvh bvh;
-    if (prims.empty()) return bvh;
-    Output out = Builder(std::move(prims)).run();
-    bvh.nodes_ = std::move(out.nodes);
-    bvh.prims_ = std::move(out.prims);
+    bvh.tree_size_ = static_cast<uint32_t>(prims.size());
+    bvh.order_.reserve(prim_bounds.size());
+    if (!prims.empty()) bvh.nodes_ = Collapser(Builder(std::move(prims)).run(bvh.order_)).run();
+    for (uint32_t i = 0; i < prim_bounds.size(); ++i)
+        if (prim_bounds[i].empty()) bvh.order_.push_back(i);
     return bvh;
 }
 

@@ -1,7 +1,9 @@
-// A bounding volume hierarchy over any primitives given by their boxes: binned SAH build,
-// 32-byte nodes in depth-first order with sibling pairs adjacent, and iterative traversal,
-// nearest child first. The primitive tests are template parameters, so the hot loop makes no
-// virtual or indirect calls.
+// A four-wide bounding volume hierarchy over any primitives given by their boxes. Built as a
+// binary tree by binned SAH and collapsed to four children per node (bvh.cpp); traversed
+// iteratively, nearest child first, testing a node's four child boxes at once in SSE (see
+// ray_box_test.h). Primitives are addressed by their position in build order, so a caller can
+// store its primitives in that order and read a leaf's primitives as one contiguous run; the
+// primitive tests are template parameters, so the hot loop makes no virtual or indirect calls.
 #pragma once
 
 #include <cstdint>
@@ -9,136 +11,115 @@
 #include <vector>
 
 #include "bounds.h"
-#include "ray.h"
+#include "ray_box_test.h"
 
 namespace glint {
 
-struct BvhNode {
-    FloatBox box;
-    uint32_t first;  // leaf: first entry of Bvh::prims(); inner node: left child (right = first + 1)
-    uint32_t count;  // leaf: number of primitives (> 0); inner node: 0
-    bool is_leaf() const { return count != 0; }
+// 128 bytes, two cache lines: the boxes of up to four children and where each child leads.
+struct alignas(64) BvhNode {
+    WideBox boxes;
+    uint32_t child[4];  // inner child: node index; leaf: its first position in build order
+    uint32_t count[4];  // leaf: number of primitives (> 0); inner child or unused slot: 0
 };
-static_assert(sizeof(BvhNode) == 32);
-
-// Slab test of Williams et al. made robust as Ize ("Robust BVH ray traversal", JCGT 2013) does:
-// far distances are scaled by 1 + 2·gamma(3) so that rounding never rejects a box the exact
-// test would accept. A zero direction component gives an infinite inverse; a ray lying in a
-// slab's plane then yields 0·inf = NaN, and the comparisons below are ordered so that a NaN
-// never narrows the interval (the ray is inside that slab for every t).
-class RayBoxTest {
-public:
-    explicit RayBoxTest(const Ray& ray) : o_(ray.o), inv_(1.0 / ray.d.x, 1.0 / ray.d.y, 1.0 / ray.d.z) {
-        // The near plane of each slab is picked by the sign bit (so -0 counts as negative):
-        // then a NaN can only come from a ray lying in a plane, never turn +inf into a near t.
-        for (int a = 0; a < 3; ++a) negative_[a] = std::signbit(inv_[a]);
-    }
-    // Entry distance in `entry` when the box overlaps (tmin, tmax].
-    bool hit(const FloatBox& box, double tmin, double tmax, double& entry) const {
-        constexpr double pad = 1 + 2 * gamma(3);
-        for (int a = 0; a < 3; ++a) {
-            const double t_near = (double(negative_[a] ? box.hi[a] : box.lo[a]) - o_[a]) * inv_[a];
-            const double t_far = (double(negative_[a] ? box.lo[a] : box.hi[a]) - o_[a]) * inv_[a] * pad;
-            tmin = t_near > tmin ? t_near : tmin;  // false for NaN: the slab does not narrow
-            tmax = t_far < tmax ? t_far : tmax;
-        }
-        entry = tmin;
-        return tmin <= tmax;
-    }
-
-private:
-    Vec3 o_, inv_;
-    bool negative_[3];
-};
+static_assert(sizeof(BvhNode) == 128);
 
 class Bvh {
 public:
-    static constexpr int kMaxDepth = 128;
+    static constexpr int kMaxDepth = 128;  // of the binary tree, and so of the wide one
 
     Bvh() = default;
     // Builds over primitives 0..n-1; primitives with empty boxes are left out of the tree.
     static Bvh build(std::span<const Bounds3> prim_bounds);
 
-    struct Output {
-        std::vector<BvhNode> nodes;
-        std::vector<uint32_t> prims;
-    };
-
+    // Build order: position -> primitive. The primitives in the tree come first (the leaves
+    // cover positions 0..tree_size()-1), those left out follow.
+    const std::vector<uint32_t>& order() const { return order_; }
+    uint32_t tree_size() const { return tree_size_; }
     const std::vector<BvhNode>& nodes() const { return nodes_; }
-    const std::vector<uint32_t>& prims() const { return prims_; }
-    size_t memory_bytes() const {
-        return nodes_.size() * sizeof(BvhNode) + prims_.size() * sizeof(uint32_t);
-    }
+    size_t memory_bytes() const { return nodes_.size() * sizeof(BvhNode); }
 
-    // Closest hit. `test(prim, ray)` intersects one primitive and, on a hit, shrinks ray.tmax
-    // to it and returns true. Returns whether anything was hit.
+    // Closest hit. `test(position, ray)` intersects the primitive at that build-order position
+    // and, on a hit, shrinks ray.tmax to it and returns true. Returns whether anything was hit.
     template <typename Test>
     bool closest(Ray& ray, Test&& test) const {
         if (nodes_.empty()) return false;
         const RayBoxTest box(ray);
-        double entry;
-        if (!box.hit(nodes_[0].box, ray.tmin, ray.tmax, entry)) return false;
-        struct Pending { uint32_t node; double entry; };
-        Pending stack[kMaxDepth];
+        Pending stack[kStackSize];
         int size = 0;
-        uint32_t current = 0;
+        Pending current{0, 0, 0};
+        float tmax = to_float_up(ray.tmax);
         bool found = false;
         for (;;) {
-            const BvhNode& node = nodes_[current];
-            if (node.is_leaf()) {
-                for (uint32_t i = node.first; i < node.first + node.count; ++i)
-                    found |= test(prims_[i], ray);
+            if (current.count == 0) {
+                size = push_children(box, nodes_[current.index], tmax, stack, size);
             } else {
-                double el, er;
-                const uint32_t l = node.first, r = node.first + 1;
-                const bool hl = box.hit(nodes_[l].box, ray.tmin, ray.tmax, el);
-                const bool hr = box.hit(nodes_[r].box, ray.tmin, ray.tmax, er);
-                if (hl && hr) {
-                    const bool left_first = el <= er;
-                    stack[size++] = left_first ? Pending{r, er} : Pending{l, el};
-                    current = left_first ? l : r;
-                    continue;
-                }
-                if (hl || hr) {
-                    current = hl ? l : r;
-                    continue;
-                }
+                for (uint32_t i = current.index; i < current.index + current.count; ++i) found |= test(i, ray);
+                tmax = to_float_up(ray.tmax);
             }
-            // Pop the next subtree that can still hold something nearer than the best hit.
+            // The nearest pending subtree that can still hold something nearer than the best hit.
             do {
                 if (size == 0) return found;
-                --size;
-            } while (stack[size].entry > ray.tmax);
-            current = stack[size].node;
+                current = stack[--size];
+            } while (current.entry > tmax);
         }
     }
 
-    // Any hit in (tmin, tmax]: `test(prim, ray)` returns whether that primitive blocks the ray.
+    // Any hit in (tmin, tmax]: `test(position, ray)` returns whether that primitive blocks the ray.
     template <typename Test>
     bool any(const Ray& ray, Test&& test) const {
         if (nodes_.empty()) return false;
         const RayBoxTest box(ray);
-        uint32_t stack[kMaxDepth];
+        const float tmax = to_float_up(ray.tmax);
+        Pending stack[kStackSize];
         int size = 0;
-        stack[size++] = 0;
-        while (size > 0) {
-            const BvhNode& node = nodes_[stack[--size]];
-            double entry;
-            if (!box.hit(node.box, ray.tmin, ray.tmax, entry)) continue;
-            if (node.is_leaf()) {
-                for (uint32_t i = node.first; i < node.first + node.count; ++i)
-                    if (test(prims_[i], ray)) return true;
+        Pending current{0, 0, 0};
+        for (;;) {
+            if (current.count == 0) {
+                __m128 entry;
+                const BvhNode& node = nodes_[current.index];
+                for (int mask = box.hit(node.boxes, tmax, entry); mask != 0; mask &= mask - 1) {
+                    const int c = __builtin_ctz(static_cast<unsigned>(mask));
+                    stack[size++] = {node.child[c], node.count[c], 0};
+                }
             } else {
-                stack[size++] = node.first + 1;
-                stack[size++] = node.first;
+                for (uint32_t i = current.index; i < current.index + current.count; ++i)
+                    if (test(i, ray)) return true;
             }
+            if (size == 0) return false;
+            current = stack[--size];
         }
-        return false;
     }
 
 private:
+    // A subtree waiting on the traversal stack: a node (count 0) or a leaf's run of positions.
+    struct Pending {
+        uint32_t index;
+        uint32_t count;
+        float entry;
+    };
+    static constexpr int kStackSize = 3 * kMaxDepth + 1;  // each level leaves at most 3 behind
+
+    // Pushes the node's children that the ray enters, farthest first, so the nearest is popped
+    // next. Returns the new stack size.
+    static int push_children(const RayBoxTest& box, const BvhNode& node, float tmax, Pending* stack, int size) {
+        __m128 entries;
+        int mask = box.hit(node.boxes, tmax, entries);
+        alignas(16) float entry[4];
+        _mm_store_ps(entry, entries);
+        const int first = size;
+        for (; mask != 0; mask &= mask - 1) {
+            const int c = __builtin_ctz(static_cast<unsigned>(mask));
+            // Insertion into the run pushed from this node, kept sorted by decreasing entry.
+            int at = size++;
+            for (; at > first && stack[at - 1].entry < entry[c]; --at) stack[at] = stack[at - 1];
+            stack[at] = {node.child[c], node.count[c], entry[c]};
+        }
+        return size;
+    }
+
     std::vector<BvhNode> nodes_;
-    std::vector<uint32_t> prims_;
+    std::vector<uint32_t> order_;
+    uint32_t tree_size_ = 0;
 };
 
 }  // namespace glint

@@ -22,11 +22,17 @@ struct Hit {
     TriangleHit triangle;  // barycentrics, when prim is a triangle
 };
 
-// Primitive ids: spheres take 0 .. S-1 in order, triangles S .. S+T-1.
+// Primitive ids: spheres take 0 .. S-1 in order, triangles S .. S+T-1. Triangle vertices are
+// kept in single precision (PackedTriangle); everything reads them through triangle(), so the
+// tests, the shading and the light sampling all see the same triangle.
+//
+// Spheres and triangles get a tree each: the triangles' tree stores them in its leaves' order,
+// so a leaf reads one contiguous run with no index in between, and a scene of one kind pays
+// nothing for the other.
 class Geometry {
 public:
     Geometry() = default;
-    Geometry(std::vector<Sphere> spheres, std::vector<Triangle> triangles,
+    Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles,
              Accelerator accelerator = Accelerator::automatic);
 
     size_t sphere_count() const { return spheres_.size(); }
@@ -34,11 +40,14 @@ public:
     uint32_t primitive_count() const { return static_cast<uint32_t>(spheres_.size() + triangles_.size()); }
     bool is_sphere(uint32_t prim) const { return prim < spheres_.size(); }
     const Sphere& sphere(uint32_t prim) const { return spheres_[prim]; }
-    const Triangle& triangle(uint32_t prim) const { return triangles_[prim - spheres_.size()]; }
+    Triangle triangle(uint32_t prim) const { return triangles_[position(prim)].unpack(); }
     uint32_t triangle_id(size_t triangle_index) const {
         return static_cast<uint32_t>(spheres_.size() + triangle_index);
     }
-    const Bvh& bvh() const { return bvh_; }
+    const Bvh& sphere_bvh() const { return sphere_bvh_; }
+    const Bvh& triangle_bvh() const { return triangle_bvh_; }
+    // The trees, the packed triangles and the maps between primitive ids and tree order.
+    size_t memory_bytes() const;
     // Zero-area triangles (collinear or coincident vertices): kept in the numbering, never hit.
     size_t degenerate_triangles() const { return degenerate_; }
     Accelerator accelerator() const { return accelerator_; }
@@ -50,13 +59,20 @@ public:
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
 
 private:
-    bool test_closest(uint32_t prim, Ray& ray, uint32_t self, Hit& hit) const;
-    bool test_any(uint32_t prim, const Ray& ray, uint32_t self) const;
+    // Where triangle `prim` is stored (its position in the tree's order, when there is a tree),
+    // or kNoPrimitive when prim is not a triangle.
+    uint32_t position(uint32_t prim) const;
+    bool closest_triangle(Ray& ray, uint32_t self, Hit& hit) const;
+    bool closest_sphere(Ray& ray, uint32_t self, Hit& hit) const;
+    bool triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
+    bool sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
 
     std::vector<Sphere> spheres_;
-    std::vector<Triangle> triangles_;
+    std::vector<PackedTriangle> triangles_;  // in triangle_bvh_'s order when there is a tree
+    std::vector<uint32_t> triangle_at_;        // tree position -> triangle index (empty: identity)
+    std::vector<uint32_t> position_of_;        // triangle index -> tree position (empty: identity)
     Accelerator accelerator_ = Accelerator::bvh;  // never automatic once built
-    Bvh bvh_;
+    Bvh sphere_bvh_, triangle_bvh_;
     size_t degenerate_ = 0;
 };
 

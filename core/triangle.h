@@ -81,4 +81,22 @@ struct Triangle {
     SurfaceInteraction interaction(const TriangleHit& hit, uint32_t prim) const;
 };
 
+// A triangle as the scene stores it: single-precision vertices (what OBJ files hold), 36 bytes
+// against 72, so that twice as many fit in the cache. The tests and the shading still compute in
+// double on the exactly widened vertices, so every bound above holds for the stored triangle.
+struct PackedTriangle {
+    float v[3][3];
+
+    static PackedTriangle pack(const Triangle& t) {
+        PackedTriangle p;
+        const Vec3* vertices[3] = {&t.v0, &t.v1, &t.v2};
+        for (int i = 0; i < 3; ++i)
+            for (int a = 0; a < 3; ++a) p.v[i][a] = to_float_nearest((*vertices[i])[a]);
+        return p;
+    }
+    Triangle unpack() const {
+        return {{v[0][0], v[0][1], v[0][2]}, {v[1][0], v[1][1], v[1][2]}, {v[2][0], v[2][1], v[2][2]}};
+    }
+};
+
 }  // namespace glint

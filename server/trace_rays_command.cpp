@@ -65,10 +65,9 @@ int run_trace_rays(const TraceOptions& o) {
         const auto hit_count = std::count_if(hits.begin(), hits.end(), [](const HitRecord& h) { return h.prim != kNoPrimitive; });
         if (!o.output.empty()) write_hits(o.output, hits);
         const double triangles = double(mesh.triangles.size());
-        std::printf("triangles %zu  build %.1f ms  nodes %zu  %.1f BVH bytes/triangle  %.1f with the triangles\n",
-                    mesh.triangles.size(), build * 1e3, geometry.bvh().nodes().size(),
-                    double(geometry.bvh().memory_bytes()) / triangles,
-                    double(geometry.bvh().memory_bytes() + mesh.triangles.size() * sizeof(Triangle)) / triangles);
+        std::printf("triangles %zu  build %.1f ms  nodes %zu  %.1f BVH node bytes/triangle  %.1f with the triangles\n",
+                    mesh.triangles.size(), build * 1e3, geometry.triangle_bvh().nodes().size(),
+                    double(geometry.triangle_bvh().memory_bytes()) / triangles, double(geometry.memory_bytes()) / triangles);
         std::printf("rays %zu  %s  hits %td  threads %u  median of %d: %.3f s  %.2f Mrays/s\n", rays.size(),
                     o.any_hit ? "any-hit" : "closest-hit", hit_count, pool.size(), o.repeat, median,
                     double(rays.size()) / median / 1e6);

@@ -2,6 +2,8 @@
 // random rays, axis-parallel rays with signed zeros, and rays starting on node planes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "geometry.h"
 #include "rng.h"
 #include "sampling.h"
@@ -99,23 +101,36 @@ TEST(Bvh, NanRaysTerminateWithoutAHit) {
 TEST(Bvh, TreeIsWellFormed) {
     const Scene s = random_scene(15, 100, 5000);
     const Geometry g(s.spheres, s.triangles);
-    const Bvh& bvh = g.bvh();
-    // Every primitive appears in exactly one leaf, and every child box lies in its parent's.
-    std::vector<int> seen(g.primitive_count(), 0);
-    for (size_t i = 0; i < bvh.nodes().size(); ++i) {
-        const BvhNode& n = bvh.nodes()[i];
-        if (n.is_leaf()) {
-            EXPECT_LE(n.count, 4u);
-            for (uint32_t k = n.first; k < n.first + n.count; ++k) ++seen[bvh.prims()[k]];
-            continue;
-        }
-        for (uint32_t c : {n.first, n.first + 1})
-            for (int a = 0; a < 3; ++a) {
-                EXPECT_GE(bvh.nodes()[c].box.lo[a], n.box.lo[a]);
-                EXPECT_LE(bvh.nodes()[c].box.hi[a], n.box.hi[a]);
+    for (const Bvh* bvh : {&g.sphere_bvh(), &g.triangle_bvh()}) {
+        // Every position of the tree lies in exactly one leaf, every node but the root has one
+        // parent, and every child's box lies in the box its parent keeps for it.
+        std::vector<int> seen(bvh->tree_size(), 0), parents(bvh->nodes().size(), 0);
+        for (const BvhNode& n : bvh->nodes())
+            for (int slot = 0; slot < 4; ++slot) {
+                const bool used = n.boxes.planes[0][slot] <= n.boxes.planes[1][slot];
+                if (!used) continue;
+                if (n.count[slot] > 0) {
+                    EXPECT_LE(n.count[slot], 4u);
+                    for (uint32_t k = n.child[slot]; k < n.child[slot] + n.count[slot]; ++k) ++seen[k];
+                    continue;
+                }
+                const BvhNode& child = bvh->nodes()[n.child[slot]];
+                ++parents[n.child[slot]];
+                for (int c = 0; c < 4; ++c) {
+                    if (!(child.boxes.planes[0][c] <= child.boxes.planes[1][c])) continue;
+                    for (int a = 0; a < 3; ++a) {
+                        EXPECT_GE(child.boxes.planes[2 * a][c], n.boxes.planes[2 * a][slot]);
+                        EXPECT_LE(child.boxes.planes[2 * a + 1][c], n.boxes.planes[2 * a + 1][slot]);
+                    }
+                }
             }
+        for (int count : seen) EXPECT_EQ(count, 1);
+        for (size_t i = 1; i < parents.size(); ++i) EXPECT_EQ(parents[i], 1) << "node " << i;
     }
-    for (int count : seen) EXPECT_EQ(count, 1);
+    // Tree order is a permutation of the primitives.
+    std::vector<uint32_t> order = g.triangle_bvh().order();
+    std::sort(order.begin(), order.end());
+    for (uint32_t i = 0; i < order.size(); ++i) EXPECT_EQ(order[i], i);
 }
 
 TEST(Bvh, CoincidentPrimitivesStillBuildAShallowTree) {
@@ -136,7 +151,7 @@ namespace {
 TEST(Bvh, AutomaticChoiceBuildsATreeOnlyForScenesLargerThanSixteenPrimitives) {
     const Scene small = random_scene(16, 16, 0), large = random_scene(16, 9, 8);
     EXPECT_EQ(Geometry(small.spheres, small.triangles).accelerator(), Accelerator::list);
-    EXPECT_TRUE(Geometry(small.spheres, small.triangles).bvh().nodes().empty());
+    EXPECT_TRUE(Geometry(small.spheres, small.triangles).sphere_bvh().nodes().empty());
     EXPECT_EQ(Geometry(large.spheres, large.triangles).accelerator(), Accelerator::bvh);
 }
 
