@@ -12,6 +12,7 @@
 
 #include "bounds.h"
 #include "ray_box_test.h"
+#include "sah_builder.h"
 
 namespace glint {
 
@@ -25,7 +26,7 @@ static_assert(sizeof(BvhNode) == 128);
 
 class Bvh {
 public:
-    static constexpr int kMaxDepth = 128;  // of the binary tree, and so of the wide one
+    static constexpr int kMaxDepth = BinaryTree::kMaxDepth;  // a wide tree is no deeper
 
     Bvh() = default;
     // Builds over primitives 0..n-1; primitives with empty boxes are left out of the tree.

@@ -28,6 +28,23 @@ inline void edge_functions(const T a[2], const T b[2], const T c[2], T& u, T& v,
 
 }  // namespace detail
 
+// The ray's share of the watertight test, the same for every triangle and so computed once per
+// ray: the axis that becomes z, and the shear that turns the direction onto it.
+struct RayShear {
+    int kx, ky, kz;
+    double sx, sy, sz;
+
+    explicit RayShear(const Vec3& d) {
+        kz = max_axis(abs(d));
+        kx = kz == 2 ? 0 : kz + 1;
+        ky = kx == 2 ? 0 : kx + 1;
+        if (d[kz] < 0) std::swap(kx, ky);  // keep the winding, so the edge signs mean the same
+        sx = d[kx] / d[kz];
+        sy = d[ky] / d[kz];
+        sz = 1.0 / d[kz];
+    }
+};
+
 struct Triangle {
     Vec3 v0, v1, v2;
 
@@ -43,13 +60,9 @@ struct Triangle {
 
     // Two-sided, with no epsilon: a hit needs all three edge functions of one sign, and an
     // edge function that is exactly zero (ray through an edge or vertex) counts as inside.
-    bool intersect(const Ray& ray, TriangleHit& hit) const {
-        const int kz = max_axis(abs(ray.d));
-        int kx = kz == 2 ? 0 : kz + 1;
-        int ky = kx == 2 ? 0 : kx + 1;
-        if (ray.d[kz] < 0) std::swap(kx, ky);  // keep the winding, so the edge signs mean the same
-        const double sx = ray.d[kx] / ray.d[kz], sy = ray.d[ky] / ray.d[kz], sz = 1.0 / ray.d[kz];
-
+    bool intersect(const Ray& ray, TriangleHit& hit) const { return intersect(ray, RayShear(ray.d), hit); }
+    bool intersect(const Ray& ray, const RayShear& shear, TriangleHit& hit) const {
+        const auto [kx, ky, kz, sx, sy, sz] = shear;
         const Vec3 a = v0 - ray.o, b = v1 - ray.o, c = v2 - ray.o;
         const double a2[2] = {a[kx] - sx * a[kz], a[ky] - sy * a[kz]};
         const double b2[2] = {b[kx] - sx * b[kz], b[ky] - sy * b[kz]};
