@@ -5,8 +5,8 @@
 namespace glint {
 namespace {
 
-// Collapses the binary tree to four children per node: a node adopts the children of its
-// largest-area inner child, again and again, while it has fewer than four. The largest child is
+// Collapses the binary tree to eight children per node: a node adopts the children of its
+// largest-area inner child, again and again, while it has fewer than eight. The largest child is
 // the one a ray most likely enters, so opening it saves the most box tests.
 class Collapser {
 public:
@@ -24,8 +24,8 @@ public:
     }
 
 private:
-    void fill(uint32_t node, std::array<uint32_t, 4> children, int size) {
-        while (size < 4) {
+    void fill(uint32_t node, std::array<uint32_t, kBvhWidth> children, int size) {
+        while (size < kBvhWidth) {
             int widest = -1;
             for (int c = 0; c < size; ++c)
                 if (!binary_[children[c]].is_leaf() &&
@@ -36,7 +36,7 @@ private:
             children[widest] = left;
             children[size++] = left + 1;
         }
-        for (int slot = 0; slot < 4; ++slot) set_slot(node, slot, slot < size ? &binary_[children[slot]] : nullptr);
+        for (int slot = 0; slot < kBvhWidth; ++slot) set_slot(node, slot, slot < size ? &binary_[children[slot]] : nullptr);
         for (int slot = 0; slot < size; ++slot) {
             const BinaryNode& child = binary_[children[slot]];
             if (child.is_leaf()) continue;

@@ -1,7 +1,7 @@
-// A four-wide bounding volume hierarchy over any primitives given by their boxes. Built as a
-// binary tree by binned SAH and collapsed to four children per node (bvh.cpp); traversed
-// iteratively, nearest child first, testing a node's four child boxes at once in SSE (see
-// ray_box_test.h). Primitives are addressed by their position in build order, so a caller can
+// An eight-wide bounding volume hierarchy over any primitives given by their boxes. Built as a
+// binary tree by binned SAH (sah_builder.h) and collapsed to eight children per node (bvh.cpp);
+// traversed iteratively, nearest child first, testing a node's eight child boxes at once in AVX
+// (ray_box_test.h). Primitives are addressed by their position in build order, so a caller can
 // store its primitives in that order and read a leaf's primitives as one contiguous run; the
 // primitive tests are template parameters, so the hot loop makes no virtual or indirect calls.
 #pragma once
@@ -16,13 +16,13 @@
 
 namespace glint {
 
-// 128 bytes, two cache lines: the boxes of up to four children and where each child leads.
+// 256 bytes, four cache lines: the boxes of up to eight children and where each child leads.
 struct alignas(64) BvhNode {
     WideBox boxes;
-    uint32_t child[4];  // inner child: node index; leaf: its first position in build order
-    uint32_t count[4];  // leaf: number of primitives (> 0); inner child or unused slot: 0
+    uint32_t child[kBvhWidth];  // inner child: node index; leaf: its first position in build order
+    uint32_t count[kBvhWidth];  // leaf: number of primitives (> 0); inner child or unused slot: 0
 };
-static_assert(sizeof(BvhNode) == 128);
+static_assert(sizeof(BvhNode) == 256);
 
 class Bvh {
 public:
@@ -52,7 +52,15 @@ public:
         bool found = false;
         for (;;) {
             if (current.count == 0) {
-                size = push_children(box, nodes_[current.index], tmax, stack, size);
+                const BvhNode& node = nodes_[current.index];
+                __m256 entries;
+                const int mask = box.hit(node.boxes, tmax, entries);
+                if (mask != 0 && (mask & (mask - 1)) == 0) {  // one child entered: no stack needed
+                    const int c = __builtin_ctz(static_cast<unsigned>(mask));
+                    current = {node.child[c], node.count[c], 0};
+                    continue;
+                }
+                size = push_children(node, mask, entries, stack, size);
             } else {
                 for (uint32_t i = current.index; i < current.index + current.count; ++i) found |= test(i, ray);
                 tmax = to_float_up(ray.tmax);
@@ -76,7 +84,7 @@ public:
         Pending current{0, 0, 0};
         for (;;) {
             if (current.count == 0) {
-                __m128 entry;
+                __m256 entry;
                 const BvhNode& node = nodes_[current.index];
                 for (int mask = box.hit(node.boxes, tmax, entry); mask != 0; mask &= mask - 1) {
                     const int c = __builtin_ctz(static_cast<unsigned>(mask));
@@ -98,15 +106,13 @@ private:
         uint32_t count;
         float entry;
     };
-    static constexpr int kStackSize = 3 * kMaxDepth + 1;  // each level leaves at most 3 behind
+    static constexpr int kStackSize = (kBvhWidth - 1) * kMaxDepth + 1;  // each level leaves at most 7 behind
 
-    // Pushes the node's children that the ray enters, farthest first, so the nearest is popped
-    // next. Returns the new stack size.
-    static int push_children(const RayBoxTest& box, const BvhNode& node, float tmax, Pending* stack, int size) {
-        __m128 entries;
-        int mask = box.hit(node.boxes, tmax, entries);
-        alignas(16) float entry[4];
-        _mm_store_ps(entry, entries);
+    // Pushes the children in `mask`, farthest first, so the nearest is popped next. Returns the
+    // new stack size.
+    static int push_children(const BvhNode& node, int mask, __m256 entries, Pending* stack, int size) {
+        alignas(32) float entry[kBvhWidth];
+        _mm256_store_ps(entry, entries);
         const int first = size;
         for (; mask != 0; mask &= mask - 1) {
             const int c = __builtin_ctz(static_cast<unsigned>(mask));

@@ -50,9 +50,9 @@ uint32_t Geometry::position(uint32_t prim) const {
 // keeps only the far root (see Sphere::intersect).
 bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
     const uint32_t skip = position(self);
-    const RayShear shear(ray.d);
+    const RayShear shear(ray);
     auto test = [&](uint32_t pos, Ray& r) {
-        if (pos == skip || !triangles_[pos].unpack().intersect(r, shear, hit.triangle)) return false;
+        if (pos == skip || !triangles_[pos].intersect(r, shear, hit.triangle)) return false;
         hit.t = r.tmax = hit.triangle.t;
         hit.prim = triangle_id(triangle_at_.empty() ? pos : triangle_at_[pos]);
         return true;
@@ -87,10 +87,10 @@ bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
 
 bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
     const uint32_t skip = position(self), wanted = position(target);
-    const RayShear shear(ray.d);
+    const RayShear shear(ray);
     auto blocks = [&](uint32_t pos, const Ray& r) {
         TriangleHit unused;
-        return pos != skip && pos != wanted && triangles_[pos].unpack().intersect(r, shear, unused);
+        return pos != skip && pos != wanted && triangles_[pos].intersect(r, shear, unused);
     };
     if (accelerator_ == Accelerator::bvh) return triangle_bvh_.any(ray, blocks);
     for (uint32_t pos = 0; pos < triangles_.size(); ++pos)

@@ -1,4 +1,4 @@
-// The slab test of one ray against the four child boxes of a BVH node at once, in SSE single
+// The slab test of one ray against the eight child boxes of a BVH node at once, in AVX single
 // precision, made conservative: it never rejects a box that the exact test with the double ray
 // would accept.
 //
@@ -10,13 +10,13 @@
 //   scaled by more than 1 + 2·gamma(3), which Ize ("Robust BVH ray traversal", JCGT 2013) shows
 //   suffices.
 // - A zero direction component gives an infinite reciprocal, and a ray lying in a slab's plane
-//   gives 0·inf = NaN. MAXPS and MINPS return their second operand when either is NaN, so with
+//   gives 0·inf = NaN. VMAXPS and VMINPS return their second operand when either is NaN, so with
 //   the running interval as second operand a NaN never narrows it: the ray is inside that slab
 //   for every t.
 #pragma once
 
-#if !defined(__SSE2__)
-#error "glint's BVH traversal needs SSE2 (every x86-64 processor has it)"
+#if !defined(__AVX2__)
+#error "glint's BVH traversal needs AVX2 (CMakeLists.txt passes -mavx2)"
 #endif
 
 #include <immintrin.h>
@@ -28,11 +28,13 @@
 
 namespace glint {
 
-// Four child boxes in structure-of-arrays order: planes[2·axis] holds the four lower bounds
-// along that axis, planes[2·axis + 1] the four upper ones. An unused slot has lo = +inf and
+inline constexpr int kBvhWidth = 8;
+
+// Eight child boxes in structure-of-arrays order: planes[2·axis] holds the eight lower bounds
+// along that axis, planes[2·axis + 1] the eight upper ones. An unused slot has lo = +inf and
 // hi = -inf, which no ray can enter.
-struct alignas(16) WideBox {
-    float planes[6][4];
+struct alignas(32) WideBox {
+    float planes[6][kBvhWidth];
 };
 
 class RayBoxTest {
@@ -41,36 +43,41 @@ public:
         for (int a = 0; a < 3; ++a) {
             const float inv = to_float_nearest(1.0 / ray.d[a]);
             const bool negative = std::signbit(inv);  // -0 counts as negative, like its -inf
-            near_plane_[a] = 2 * a + negative;
-            far_plane_[a] = 2 * a + !negative;
+            near_offset_[a] = kBvhWidth * (2 * a + negative);
+            far_offset_[a] = kBvhWidth * (2 * a + !negative);
             const float up = to_float_up(ray.o[a]), down = to_float_down(ray.o[a]);
-            near_origin_[a] = _mm_set1_ps(negative ? down : up);
-            far_origin_[a] = _mm_set1_ps(negative ? up : down);
-            inv_[a] = _mm_set1_ps(inv);
+            near_origin_[a] = _mm256_set1_ps(negative ? down : up);
+            far_origin_[a] = _mm256_set1_ps(negative ? up : down);
+            inv_[a] = _mm256_set1_ps(inv);
         }
-        tmin_ = _mm_set1_ps(to_float_down(ray.tmin));
+        tmin_ = _mm256_set1_ps(to_float_down(ray.tmin));
     }
 
     // Bit i of the result is set when box i overlaps the ray in (tmin, tmax]; `entry` receives
-    // the four entry distances. `tmax` is the ray's limit rounded up to float.
-    int hit(const WideBox& box, float tmax, __m128& entry) const {
-        __m128 t_near = tmin_;
-        __m128 t_far = _mm_set1_ps(std::numeric_limits<float>::infinity());
-        for (int a = 0; a < 3; ++a) {
-            const __m128 n = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(box.planes[near_plane_[a]]), near_origin_[a]), inv_[a]);
-            const __m128 f = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(box.planes[far_plane_[a]]), far_origin_[a]), inv_[a]);
-            t_near = _mm_max_ps(n, t_near);
-            t_far = _mm_min_ps(f, t_far);
-        }
+    // the eight entry distances. `tmax` is the ray's limit rounded up to float.
+    int hit(const WideBox& box, float tmax, __m256& entry) const {
+        const float* planes = &box.planes[0][0];
+        __m256 t_near = _mm256_max_ps(distance(planes, near_offset_[2], near_origin_[2], inv_[2]), tmin_);
+        t_near = _mm256_max_ps(distance(planes, near_offset_[1], near_origin_[1], inv_[1]), t_near);
+        t_near = _mm256_max_ps(distance(planes, near_offset_[0], near_origin_[0], inv_[0]), t_near);
         constexpr float kPad = 1 + 0x1p-20f;  // above 1 + 2·gamma(3), with room for its own rounding
-        t_far = _mm_min_ps(_mm_mul_ps(t_far, _mm_set1_ps(kPad)), _mm_set1_ps(tmax));
+        __m256 t_far = _mm256_min_ps(distance(planes, far_offset_[2], far_origin_[2], inv_[2]), _mm256_set1_ps(kInfinityF));
+        t_far = _mm256_min_ps(distance(planes, far_offset_[1], far_origin_[1], inv_[1]), t_far);
+        t_far = _mm256_min_ps(distance(planes, far_offset_[0], far_origin_[0], inv_[0]), t_far);
+        t_far = _mm256_min_ps(_mm256_mul_ps(t_far, _mm256_set1_ps(kPad)), _mm256_set1_ps(tmax));
         entry = t_near;
-        return _mm_movemask_ps(_mm_cmple_ps(t_near, t_far));
+        return _mm256_movemask_ps(_mm256_cmp_ps(t_near, t_far, _CMP_LE_OQ));
     }
 
 private:
-    __m128 near_origin_[3], far_origin_[3], inv_[3], tmin_;
-    int near_plane_[3], far_plane_[3];
+    static constexpr float kInfinityF = std::numeric_limits<float>::infinity();
+    // Distances to eight planes along one axis.
+    static __m256 distance(const float* planes, int offset, __m256 origin, __m256 inv) {
+        return _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(planes + offset), origin), inv);
+    }
+
+    __m256 near_origin_[3], far_origin_[3], inv_[3], tmin_;
+    int near_offset_[3], far_offset_[3];  // in floats from the first plane
 };
 
 }  // namespace glint

@@ -29,12 +29,15 @@ inline void edge_functions(const T a[2], const T b[2], const T c[2], T& u, T& v,
 }  // namespace detail
 
 // The ray's share of the watertight test, the same for every triangle and so computed once per
-// ray: the axis that becomes z, and the shear that turns the direction onto it.
+// ray: the axis that becomes z, the shear that turns the direction onto it, and the origin in
+// the permuted axes.
 struct RayShear {
     int kx, ky, kz;
     double sx, sy, sz;
+    double ox, oy, oz;
 
-    explicit RayShear(const Vec3& d) {
+    explicit RayShear(const Ray& ray) {
+        const Vec3& d = ray.d;
         kz = max_axis(abs(d));
         kx = kz == 2 ? 0 : kz + 1;
         ky = kx == 2 ? 0 : kx + 1;
@@ -42,8 +45,48 @@ struct RayShear {
         sx = d[kx] / d[kz];
         sy = d[ky] / d[kz];
         sz = 1.0 / d[kz];
+        ox = ray.o[kx];
+        oy = ray.o[ky];
+        oz = ray.o[kz];
     }
 };
+
+namespace detail {
+
+// Woop et al.'s test proper, given the vertices relative to the ray origin in the permuted axes
+// (a[2] is along the ray's dominant axis). Two-sided, with no epsilon: a hit needs all three
+// edge functions of one sign, and an edge function that is exactly zero (ray through an edge or
+// vertex) counts as inside.
+inline bool watertight_test(const double a[3], const double b[3], const double c[3], const RayShear& s,
+                            const Ray& ray, TriangleHit& hit) {
+    const double a2[2] = {a[0] - s.sx * a[2], a[1] - s.sy * a[2]};
+    const double b2[2] = {b[0] - s.sx * b[2], b[1] - s.sy * b[2]};
+    const double c2[2] = {c[0] - s.sx * c[2], c[1] - s.sy * c[2]};
+    double u, v, w;
+    edge_functions(a2, b2, c2, u, v, w);
+    if (u == 0 || v == 0 || w == 0) {
+        // Exactly on an edge in double: decide it with the wider long double, as the paper
+        // redoes float in double, so that rounding alone never puts a ray on an edge.
+        const long double la[2] = {a2[0], a2[1]}, lb[2] = {b2[0], b2[1]}, lc[2] = {c2[0], c2[1]};
+        long double lu, lv, lw;
+        edge_functions(la, lb, lc, lu, lv, lw);
+        u = static_cast<double>(lu);
+        v = static_cast<double>(lv);
+        w = static_cast<double>(lw);
+    }
+    if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
+    const double det = u + v + w;
+    if (det == 0) return false;  // the ray lies in the triangle's plane, or it is degenerate
+
+    const double tz = u * (s.sz * a[2]) + v * (s.sz * b[2]) + w * (s.sz * c[2]);
+    const double inv_det = 1.0 / det;
+    const double t = tz * inv_det;
+    if (!(t > ray.tmin && t <= ray.tmax)) return false;
+    hit = {t, u * inv_det, v * inv_det, w * inv_det};
+    return true;
+}
+
+}  // namespace detail
 
 struct Triangle {
     Vec3 v0, v1, v2;
@@ -58,37 +101,12 @@ struct Triangle {
     Vec3 unnormalized_normal() const { return cross(v1 - v0, v2 - v0); }
     double area() const { return 0.5 * length(unnormalized_normal()); }
 
-    // Two-sided, with no epsilon: a hit needs all three edge functions of one sign, and an
-    // edge function that is exactly zero (ray through an edge or vertex) counts as inside.
-    bool intersect(const Ray& ray, TriangleHit& hit) const { return intersect(ray, RayShear(ray.d), hit); }
-    bool intersect(const Ray& ray, const RayShear& shear, TriangleHit& hit) const {
-        const auto [kx, ky, kz, sx, sy, sz] = shear;
-        const Vec3 a = v0 - ray.o, b = v1 - ray.o, c = v2 - ray.o;
-        const double a2[2] = {a[kx] - sx * a[kz], a[ky] - sy * a[kz]};
-        const double b2[2] = {b[kx] - sx * b[kz], b[ky] - sy * b[kz]};
-        const double c2[2] = {c[kx] - sx * c[kz], c[ky] - sy * c[kz]};
-        double u, v, w;
-        detail::edge_functions(a2, b2, c2, u, v, w);
-        if (u == 0 || v == 0 || w == 0) {
-            // Exactly on an edge in double: decide it with the wider long double, as the paper
-            // redoes float in double, so that rounding alone never puts a ray on an edge.
-            const long double la[2] = {a2[0], a2[1]}, lb[2] = {b2[0], b2[1]}, lc[2] = {c2[0], c2[1]};
-            long double lu, lv, lw;
-            detail::edge_functions(la, lb, lc, lu, lv, lw);
-            u = static_cast<double>(lu);
-            v = static_cast<double>(lv);
-            w = static_cast<double>(lw);
-        }
-        if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
-        const double det = u + v + w;
-        if (det == 0) return false;  // the ray lies in the triangle's plane, or it is degenerate
-
-        const double tz = u * (sz * a[kz]) + v * (sz * b[kz]) + w * (sz * c[kz]);
-        const double inv_det = 1.0 / det;
-        const double t = tz * inv_det;
-        if (!(t > ray.tmin && t <= ray.tmax)) return false;
-        hit = {t, u * inv_det, v * inv_det, w * inv_det};
-        return true;
+    bool intersect(const Ray& ray, TriangleHit& hit) const { return intersect(ray, RayShear(ray), hit); }
+    bool intersect(const Ray& ray, const RayShear& s, TriangleHit& hit) const {
+        const double a[3] = {v0[s.kx] - s.ox, v0[s.ky] - s.oy, v0[s.kz] - s.oz};
+        const double b[3] = {v1[s.kx] - s.ox, v1[s.ky] - s.oy, v1[s.kz] - s.oz};
+        const double c[3] = {v2[s.kx] - s.ox, v2[s.ky] - s.oy, v2[s.kz] - s.oz};
+        return detail::watertight_test(a, b, c, s, ray, hit);
     }
 
     SurfaceInteraction interaction(const TriangleHit& hit, uint32_t prim) const;
@@ -109,6 +127,13 @@ struct PackedTriangle {
     }
     Triangle unpack() const {
         return {{v[0][0], v[0][1], v[0][2]}, {v[1][0], v[1][1], v[1][2]}, {v[2][0], v[2][1], v[2][2]}};
+    }
+    // Bit for bit what unpack().intersect() answers, without building the double triangle.
+    bool intersect(const Ray& ray, const RayShear& s, TriangleHit& hit) const {
+        const double a[3] = {double(v[0][s.kx]) - s.ox, double(v[0][s.ky]) - s.oy, double(v[0][s.kz]) - s.oz};
+        const double b[3] = {double(v[1][s.kx]) - s.ox, double(v[1][s.ky]) - s.oy, double(v[1][s.kz]) - s.oz};
+        const double c[3] = {double(v[2][s.kx]) - s.ox, double(v[2][s.ky]) - s.oy, double(v[2][s.kz]) - s.oz};
+        return detail::watertight_test(a, b, c, s, ray, hit);
     }
 };
 

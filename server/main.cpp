@@ -5,6 +5,10 @@
 #include "commands.h"
 
 int main(int argc, char** argv) {
+    if (!__builtin_cpu_supports("avx2")) {  // built with -mavx2 (see CMakeLists.txt)
+        std::fprintf(stderr, "glint: this processor lacks AVX2, which this build of glint needs\n");
+        return 1;
+    }
     CLI::App app{"glint: a path-tracing renderer"};
     app.require_subcommand(1);
     const std::map<std::string, std::function<int()>> commands = {

@@ -106,7 +106,7 @@ TEST(Bvh, TreeIsWellFormed) {
         // parent, and every child's box lies in the box its parent keeps for it.
         std::vector<int> seen(bvh->tree_size(), 0), parents(bvh->nodes().size(), 0);
         for (const BvhNode& n : bvh->nodes())
-            for (int slot = 0; slot < 4; ++slot) {
+            for (int slot = 0; slot < kBvhWidth; ++slot) {
                 const bool used = n.boxes.planes[0][slot] <= n.boxes.planes[1][slot];
                 if (!used) continue;
                 if (n.count[slot] > 0) {
@@ -116,7 +116,7 @@ TEST(Bvh, TreeIsWellFormed) {
                 }
                 const BvhNode& child = bvh->nodes()[n.child[slot]];
                 ++parents[n.child[slot]];
-                for (int c = 0; c < 4; ++c) {
+                for (int c = 0; c < kBvhWidth; ++c) {
                     if (!(child.boxes.planes[0][c] <= child.boxes.planes[1][c])) continue;
                     for (int a = 0; a < 3; ++a) {
                         EXPECT_GE(child.boxes.planes[2 * a][c], n.boxes.planes[2 * a][slot]);
