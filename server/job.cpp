@@ -51,15 +51,14 @@ Progress Job::with_earlier_time(Progress p) const {
     return p;
 }
 
-void Job::save_state(JobState state, const Progress& progress) const {
+void Job::save_state(JobState state, const std::string& error, const Progress& progress) const {
     if (!store_) return;
     try {
-        store_->save_state(id_, created_, state, snapshot().error, progress);
+        store_->save_state(id_, created_, state, error, progress);
     } catch (const std::exception& e) {
         spdlog::error("job {}: cannot save its state: {}", id_, e.what());
     }
 }
-
 
 // Called between passes, so the film holds whole passes: resuming from it adds the remaining
 // samples in the order an uninterrupted run would.
@@ -81,13 +80,14 @@ void Job::checkpoint(const Progress& progress) {
 
 // The final film replaces the checkpoint only once the state says the job ended: a crash in
 // between leaves a job that resumes from its checkpoint. Its sample range covers every pixel's
-// samples, also those of a pass cut short (which only some pixels have).
+// samples, also those of a pass cut short (which only some pixels have). Called before the job
+// ends in memory, so a job is evicted only once its files are complete.
 void Job::save_final(JobState state, const Progress& progress) const {
     if (!store_) return;
     try {
         if (const uint32_t most = most_samples(render_.film()); most > 0)
             store_->save_film(id_, FilmFile::final, film_file(render_, fingerprint_, most));
-        store_->save_state(id_, created_, state, snapshot().error, progress);
+        store_->save_state(id_, created_, state, "", progress);
         std::filesystem::remove(store_->film_path(id_, FilmFile::checkpoint));
     } catch (const std::exception& e) {
         spdlog::error("job {}: cannot save its end: {}", id_, e.what());
@@ -134,38 +134,38 @@ void Job::run(ThreadPool& pool) {
             return;
         }
         // The final frame also holds the samples of a pass cut short: nothing rendered is lost.
-        publish(reason == StopReason::cancelled ? JobState::cancelled : JobState::done,
-                with_earlier_time(render_.progress()));
+        const JobState end = reason == StopReason::cancelled ? JobState::cancelled : JobState::done;
+        const Progress p = with_earlier_time(render_.progress());
+        save_final(end, p);
+        publish(end, p);
     } catch (const std::exception& e) {
         spdlog::error("job {} failed: {}", id_, e.what());
+        const Progress p = with_earlier_time(render_.progress());
+        save_state(JobState::failed, e.what(), p);
         {
             std::lock_guard lock(mutex_);
             snapshot_.error = e.what();
         }
-        publish(JobState::failed, with_earlier_time(render_.progress()));
-        save_state(JobState::failed, snapshot().progress);
+        publish(JobState::failed, p);
         return;
     }
     const JobSnapshot last = snapshot();
-    save_final(last.state, last.progress);
     spdlog::info("job {} {} ({}): {} spp in {:.2f} s, error {:.4g}", id_, to_string(last.state), to_string(reason),
                  last.progress.spp_done, last.progress.seconds, last.progress.error_estimate);
 }
 
 void Job::cancel() {
-    bool was_queued = false;
     {
         std::lock_guard lock(mutex_);
         if (is_final(snapshot_.state) || suspended_) return;
-        was_queued = snapshot_.state == JobState::queued;
-        if (was_queued) {
+        if (snapshot_.state == JobState::queued) {
+            save_state(JobState::cancelled, "", snapshot_.progress);  // on disk first, as in run()
             snapshot_.state = JobState::cancelled;
             snapshot_.frame += 1;
         }
     }
     render_.cancel();
     changed_.notify_all();
-    if (was_queued) save_state(JobState::cancelled, snapshot().progress);
     spdlog::info("job {} cancel requested", id_);
 }
 
@@ -216,6 +216,7 @@ void Job::restore_final(JobState state, const std::string& error, const Progress
 }
 
 void Job::fail(const std::string& error) {
+    save_state(JobState::failed, error, snapshot().progress);
     {
         std::lock_guard lock(mutex_);
         snapshot_.frame += 1;
@@ -226,7 +227,6 @@ void Job::fail(const std::string& error) {
     }
     changed_.notify_all();
     spdlog::error("job {} failed: {}", id_, error);
-    save_state(JobState::failed, snapshot().progress);
 }
 
 JobSnapshot Job::snapshot() const {

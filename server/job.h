@@ -69,7 +69,7 @@ private:
     void publish(JobState state, const Progress& progress);
     Progress with_earlier_time(Progress p) const;
     // Store writes: a failure is logged, never stops the render or a request.
-    void save_state(JobState state, const Progress& progress) const;
+    void save_state(JobState state, const std::string& error, const Progress& progress) const;
     void checkpoint(const Progress& progress);
     void save_final(JobState state, const Progress& progress) const;
 

@@ -150,7 +150,9 @@ void JobManager::slot() {
         job->run(pool_);
         std::lock_guard lock(mutex_);
         --running_;
-        if (store_) forget_old_finished();  // the job's final film replaced its checkpoint
+        // The job's final film replaced its checkpoint. Not while stopping: suspended jobs look
+        // ended in memory, but the store keeps them to resume.
+        if (store_ && !stopping_) forget_old_finished();
     }
 }
 
