@@ -53,6 +53,13 @@ bool is_job_id(const std::string& name) {
            });
 }
 
+// A crash in the middle of write_file leaves its temporary file behind.
+void remove_temporaries(const fs::path& folder) {
+    std::error_code error;
+    for (const auto& entry : fs::directory_iterator(folder, error))
+        if (entry.path().extension() == ".tmp") fs::remove(entry.path(), error);
+}
+
 uint64_t folder_bytes(const fs::path& folder) {
     uint64_t total = 0;
     std::error_code error;
@@ -75,6 +82,7 @@ std::vector<StoredJob> JobStore::load() const {
     for (const auto& entry : fs::directory_iterator(config_.dir)) {
         const std::string id = entry.path().filename().string();
         if (!entry.is_directory() || !is_job_id(id)) continue;
+        remove_temporaries(entry.path());
         try {
             const json state = json::parse(read_text(entry.path() / "state.json", kMaxStateBytes));
             StoredJob job;

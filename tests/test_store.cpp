@@ -240,6 +240,12 @@ TEST_F(Store, CorruptOrTruncatedFilmsFailTheirJobsAndServeNoImage) {
     flip_a_byte(film(done, "final.glntpart"));
     flip_a_byte(film(flipped, "checkpoint.glntpart"));
     fs::resize_file(film(truncated, "checkpoint.glntpart"), fs::file_size(film(truncated, "checkpoint.glntpart")) / 2);
+    // A state file cut short, and a temporary file a crash left behind.
+    const std::string unreadable = "0123456789abcdef";
+    fs::create_directories(store_ / unreadable);
+    std::ofstream(store_ / unreadable / "request.json") << small;
+    std::ofstream(store_ / unreadable / "state.json") << R"({"created": 1, "sta)";
+    std::ofstream(store_ / done / "state.json.tmp") << "{";
 
     ServerProcess server(store_, log(2));
     EXPECT_EQ(server.get_json("/health")["status"], "ok");
@@ -254,6 +260,9 @@ TEST_F(Store, CorruptOrTruncatedFilmsFailTheirJobsAndServeNoImage) {
         server.get_body("/jobs/" + id + "/image.pfm", 409);
         EXPECT_NE(server.log().find("job " + id + " failed: " + film(id, file).string()), std::string::npos);
     }
+    server.get_body("/jobs/" + unreadable, 404);
+    EXPECT_NE(server.log().find("job " + unreadable + " left out"), std::string::npos);
+    EXPECT_FALSE(fs::exists(store_ / done / "state.json.tmp"));
     // The server goes on working, and the failure is kept: a restart does not read the files again.
     const std::string next = server.submit(small);
     EXPECT_EQ(server.wait_until_final(next)["state"], "done");
