@@ -43,8 +43,13 @@ std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene, const std::str
         if (queue_.size() >= limits_.max_queued)
             throw QueueFull("too many queued jobs (limit " + std::to_string(limits_.max_queued) + ")");
         if (store_) {
-            store_->save_request(job->id(), request);
-            store_->save_state(job->id(), job->created(), JobState::queued, "", job->snapshot().progress);
+            try {
+                store_->save_request(job->id(), request);
+                store_->save_state(job->id(), job->created(), JobState::queued, "", job->snapshot().progress);
+            } catch (const std::exception&) {
+                store_->remove(job->id());  // a job the store cannot keep is not accepted
+                throw;
+            }
         }
         queue_.push_back(job);
         jobs_[job->id()] = job;
