@@ -11,6 +11,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -158,6 +159,34 @@ std::pair<std::string, std::string> uninterrupted(const std::string& request) {
     const Image image = job->film().mean();
     const auto png = encode_png(image, scene.settings.encoding), pfm = encode_pfm(image);
     return {std::string(png.begin(), png.end()), std::string(pfm.begin(), pfm.end())};
+}
+
+// The property the store rests on: a job resumed from a film of whole passes adds the remaining
+// samples in the order an uninterrupted run does.
+TEST(StoreResume, ARenderResumedBetweenPassesHasBitIdenticalSums) {
+    LoadedScene scene = parse_job_request(R"({"preset": "cornell", "width": 12, "height": 8, "spp": 24})",
+                                          GLINT_SCENES_DIR, ServiceLimits{});
+    ThreadPool pool(2);
+    RenderJob whole(scene.scene, scene.settings);
+    whole.run(pool);
+    RenderSettings first_part = scene.settings;
+    first_part.spp = 8;
+    RenderJob before(scene.scene, first_part);
+    before.run(pool);
+    RenderJob resumed(scene.scene, scene.settings);
+    resumed.resume(before.film(), 8);
+    resumed.run(pool);
+    ASSERT_EQ(resumed.progress().spp_done, 24u);
+    for (size_t i = 0; i < whole.film().pixels().size(); ++i) {
+        const PixelSums &a = whole.film().pixels()[i], &b = resumed.film().pixels()[i];
+        ASSERT_EQ(std::memcmp(&a.sum, &b.sum, sizeof a.sum), 0) << "pixel " << i;
+        ASSERT_EQ(std::memcmp(&a.sum_sq, &b.sum_sq, sizeof a.sum_sq), 0) << "pixel " << i;
+        ASSERT_EQ(a.count, b.count);
+    }
+    RenderJob wrong(scene.scene, scene.settings);
+    EXPECT_THROW(wrong.resume(Film(4, 4), 8), std::invalid_argument);
+    EXPECT_THROW(wrong.resume(before.film(), 6), std::invalid_argument);  // not whole rounds of 4
+    EXPECT_THROW(wrong.resume(before.film(), 28), std::invalid_argument);  // beyond the job
 }
 
 uint32_t spp_done(ServerProcess& server, const std::string& id) {
