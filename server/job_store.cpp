@@ -63,8 +63,12 @@ void remove_temporaries(const fs::path& folder) {
 uint64_t folder_bytes(const fs::path& folder) {
     uint64_t total = 0;
     std::error_code error;
-    for (const auto& entry : fs::directory_iterator(folder, error))
-        if (entry.is_regular_file(error)) total += entry.file_size(error);
+    for (const auto& entry : fs::directory_iterator(folder, error)) {
+        // A running job may replace or remove a file meanwhile: count what is still there.
+        std::error_code gone;
+        const uintmax_t size = entry.is_regular_file(gone) ? entry.file_size(gone) : 0;
+        if (!gone) total += size;
+    }
     return total;
 }
 
