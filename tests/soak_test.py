@@ -81,8 +81,8 @@ class Client:
     def __init__(self, port, tally, rng):
         self.port, self.tally, self.rng = port, tally, rng
 
-    def connect(self):
-        return http.client.HTTPConnection("127.0.0.1", self.port, timeout=30)
+    def connect(self, timeout=30):
+        return http.client.HTTPConnection("127.0.0.1", self.port, timeout=timeout)
 
     def request(self, method, path, body=None, expect=()):
         conn = self.connect()
@@ -113,12 +113,15 @@ class Client:
                 self.tally.accepted.append(json.loads(data)["id"])
 
     def render_and_maybe_hang_up(self):
-        conn = self.connect()
+        # The PNG comes once the job has waited its turn: behind a full queue on an instrumented
+        # (sanitizer) build that can take minutes.
+        wait_for_it = self.rng.random() < 0.5
+        conn = self.connect(timeout=240 if wait_for_it else 30)
         try:
             conn.request("POST", "/render", body=self.job_body())
             res = conn.getresponse()
             self.tally.status("POST /render", res.status)
-            if res.status == 200 and self.rng.random() < 0.5:
+            if res.status == 200 and wait_for_it:
                 res.read()
             else:
                 self.tally.disconnect()
