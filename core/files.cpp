@@ -1,20 +1,52 @@
 #include "files.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
 namespace glint {
+namespace {
+
+// Writes all of `bytes` to `fd` and waits until they are on the disk.
+bool write_and_sync(int fd, const std::vector<uint8_t>& bytes) {
+    for (size_t done = 0; done < bytes.size();) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return false;
+        done += size_t(n);
+    }
+    return ::fsync(fd) == 0;
+}
+
+// A rename is durable only once the folder holding the name is synced too.
+void sync_folder(const std::filesystem::path& file) {
+    const std::filesystem::path folder = file.has_parent_path() ? file.parent_path() : ".";
+    const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
+
+}  // namespace
 
 void write_file(const std::string& path, const std::vector<uint8_t>& bytes) {
     const std::string temporary = path + ".tmp";
-    {
-        std::ofstream out(temporary, std::ios::binary);
-        out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-        if (!out) throw FileError("cannot write " + path);
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) throw FileError("cannot write " + path + ": " + std::strerror(errno));
+    const bool written = write_and_sync(fd, bytes);
+    const int error_number = errno;
+    if (::close(fd) != 0 || !written) {
+        ::unlink(temporary.c_str());
+        throw FileError("cannot write " + path + ": " + std::strerror(written ? errno : error_number));
     }
     std::error_code error;
     std::filesystem::rename(temporary, path, error);
     if (error) throw FileError("cannot write " + path + ": " + error.message());
+    sync_folder(path);
 }
 
 std::vector<uint8_t> read_file(const std::string& path, size_t max_bytes) {

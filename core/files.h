@@ -12,7 +12,8 @@ struct FileError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// Writes through a temporary file and a rename, so a reader never sees half a file.
+// Writes through a temporary file, fsync and a rename (then syncs the folder), so neither a
+// reader nor a crash ever leaves half a file under `path`.
 void write_file(const std::string& path, const std::vector<uint8_t>& bytes);
 // Throws FileError if the file is missing, unreadable or larger than max_bytes.
 std::vector<uint8_t> read_file(const std::string& path, size_t max_bytes);

@@ -74,6 +74,8 @@ std::vector<uint8_t> encode_partial(const Partial& p) {
     return std::move(w.bytes);
 }
 
+uint64_t partial_file_size(int width, int height) { return kHeader + kPixel * uint64_t(width) * uint64_t(height) + kTrailer; }
+
 Partial decode_partial(const std::vector<uint8_t>& bytes) {
     if (bytes.size() < kHeader + kTrailer || std::memcmp(bytes.data(), kMagic, 8) != 0)
         throw PartialError("not a glint partial file");

@@ -36,6 +36,7 @@ struct Partial {
 };
 
 std::vector<uint8_t> encode_partial(const Partial& partial);
+uint64_t partial_file_size(int width, int height);
 Partial decode_partial(const std::vector<uint8_t>& bytes);  // throws PartialError
 
 // Combines parts of one job: same fingerprint and size, sample ranges that neither overlap nor

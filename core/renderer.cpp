@@ -73,7 +73,7 @@ Progress RenderJob::progress() const {
     p.spp_done = spp_done_;
     p.spp_target = settings_.spp;
     p.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
-    p.samples_per_second = p.seconds > 0 ? double(spp_done_) * settings_.width * settings_.height / p.seconds : 0;
+    p.samples_per_second = p.seconds > 0 ? double(spp_done_ - spp_at_start_) * settings_.width * settings_.height / p.seconds : 0;
     p.error_estimate = film_.error_estimate();
     p.dropped = film_.dropped();
     return p;
@@ -90,8 +90,21 @@ uint32_t RenderJob::next_pass_size(uint32_t previous) const {
     return std::min(size, settings_.spp - spp_done_);
 }
 
+void RenderJob::resume(Film film, uint32_t spp_done) {
+    if (film.width() != settings_.width || film.height() != settings_.height)
+        throw std::invalid_argument("the checkpoint's film is " + std::to_string(film.width()) + "x" +
+                                    std::to_string(film.height()) + ", the job's " + std::to_string(settings_.width) +
+                                    "x" + std::to_string(settings_.height));
+    if (spp_done > settings_.spp || spp_done % samples_per_round(settings_.filter) != 0)
+        throw std::invalid_argument("the checkpoint's " + std::to_string(spp_done) + " spp do not fit the job's " +
+                                    std::to_string(settings_.spp));
+    film_ = std::move(film);
+    spp_done_ = spp_done;
+}
+
 StopReason RenderJob::run(ThreadPool& pool, const std::function<void(const Progress&)>& on_pass) {
     start_ = Clock::now();
+    spp_at_start_ = spp_done_;
     if (settings_.time_limit > 0)
         deadline_ = start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(settings_.time_limit));
     uint32_t pass = samples_per_round(settings_.filter);

@@ -55,6 +55,11 @@ public:
     StopReason run(ThreadPool& pool, const std::function<void(const Progress&)>& on_pass = {});
     // Thread-safe: the pass in progress stops after the tiles already being rendered.
     void cancel() { cancelled_ = true; }
+    // Continues from a checkpoint taken between passes: `film` holds samples [first_sample,
+    // first_sample + spp_done) of every pixel, added in sample order, so run() adds the rest in
+    // the order an uninterrupted run would and the sums come out bit-identical. Call before
+    // run(); throws std::invalid_argument if the film or the count does not fit this job.
+    void resume(Film film, uint32_t spp_done);
 
     // Samples [first, last) of every pixel, added to the film in sample order. Returns false
     // if the job was stopped (cancelled or out of time) before every tile was rendered.
@@ -80,6 +85,7 @@ private:
     Film film_;
     int tiles_x_, tiles_y_;
     uint32_t spp_done_ = 0;
+    uint32_t spp_at_start_ = 0;  // samples resumed from, left out of the rate
     std::atomic<bool> cancelled_{false};
     Clock::time_point start_{}, deadline_ = Clock::time_point::max();
 };

@@ -58,7 +58,7 @@ std::shared_ptr<Job> HttpApi::job_or_404(const httplib::Request& req, httplib::R
 // Parses and queues the job a request describes, or answers with the error and returns null.
 std::shared_ptr<Job> HttpApi::accept(const httplib::Request& req, httplib::Response& res) {
     try {
-        return jobs_.submit(parse_job_request(req.body, config_.scenes, config_.limits));
+        return jobs_.submit(parse_job_request(req.body, config_.scenes, config_.limits), req.body);
     } catch (const RequestError& e) {
         send_error(res, e.status, e.what(), e.path);
     } catch (const QueueFull& e) {

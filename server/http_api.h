@@ -8,6 +8,7 @@
 #include <httplib.h>
 
 #include "job_manager.h"
+#include "job_store.h"
 
 namespace glint {
 
@@ -15,6 +16,7 @@ struct ServiceConfig {
     std::filesystem::path scenes = "scenes";
     std::filesystem::path web = "web";
     ServiceLimits limits;
+    StoreConfig store;  // --store: jobs survive a restart (job_store.h)
 };
 
 class HttpApi {

@@ -4,6 +4,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "job_request.h"
+
 namespace glint {
 namespace {
 
@@ -18,7 +20,8 @@ std::string new_job_id() {
 
 }  // namespace
 
-JobManager::JobManager(ThreadPool& pool, const ServiceLimits& limits) : pool_(pool), limits_(limits) {
+JobManager::JobManager(ThreadPool& pool, const ServiceLimits& limits, const StoreConfig& store)
+    : pool_(pool), limits_(limits), store_(store.dir.empty() ? nullptr : std::make_unique<JobStore>(store)) {
     for (unsigned i = 0; i < limits_.max_running; ++i) slots_.emplace_back([this] { slot(); });
 }
 
@@ -27,17 +30,31 @@ JobManager::~JobManager() {
     for (std::thread& t : slots_) t.join();
 }
 
-std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene) {
-    auto job = std::make_shared<Job>(new_job_id(), scene);
+std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene, const std::string& request) {
+    const uint64_t film_bytes = store_ ? partial_file_size(scene.settings.width, scene.settings.height) : 0;
+    if (store_ && film_bytes > store_->config().limit_bytes)
+        throw RequestError(422, "the job's checkpoint (" + std::to_string(film_bytes) +
+                                    " bytes) would not fit in the store (limit " +
+                                    std::to_string(store_->config().limit_bytes) + " bytes)");
+    auto job = std::make_shared<Job>(new_job_id(), scene, store_.get());
     {
         std::lock_guard lock(mutex_);
         if (stopping_) throw QueueFull("the server is shutting down");
         if (queue_.size() >= limits_.max_queued)
             throw QueueFull("too many queued jobs (limit " + std::to_string(limits_.max_queued) + ")");
+        if (store_) {
+            try {
+                store_->save_request(job->id(), request);
+                store_->save_state(job->id(), job->created(), JobState::queued, "", job->snapshot().progress);
+            } catch (const std::exception&) {
+                store_->remove(job->id());  // a job the store cannot keep is not accepted
+                throw;
+            }
+        }
         queue_.push_back(job);
         jobs_[job->id()] = job;
         order_.push_back(job->id());
-        forget_old_finished();
+        forget_old_finished(film_bytes);
     }
     work_.notify_one();
     spdlog::info("job {} queued: {}x{}, {} spp", job->id(), job->settings().width, job->settings().height,
@@ -45,18 +62,83 @@ std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene) {
     return job;
 }
 
-void JobManager::forget_old_finished() {
+void JobManager::forget_old_finished(uint64_t reserve) {
     size_t finished = 0;
     for (const auto& id : order_) finished += is_final(jobs_.at(id)->snapshot().state);
-    for (auto it = order_.begin(); it != order_.end() && finished > limits_.max_finished;) {
-        if (is_final(jobs_.at(*it)->snapshot().state)) {
-            jobs_.erase(*it);
-            it = order_.erase(it);
-            --finished;
-        } else {
+    const uint64_t limit = store_ ? store_->config().limit_bytes : 0;
+    uint64_t used = store_ ? store_->bytes_used() + reserve : 0;
+    for (auto it = order_.begin(); it != order_.end() && (finished > limits_.max_finished || used > limit);) {
+        if (!is_final(jobs_.at(*it)->snapshot().state)) {
             ++it;
+            continue;
+        }
+        if (store_) {
+            const uint64_t bytes = store_->job_bytes(*it);
+            store_->remove(*it);
+            if (used > limit)
+                spdlog::info("store: evicted finished job {} ({} bytes) to keep within the limit of {} bytes", *it,
+                             bytes, limit);
+            used -= std::min(used, bytes);
+        }
+        jobs_.erase(*it);
+        it = order_.erase(it);
+        --finished;
+    }
+    if (used > limit)
+        spdlog::warn("store: {} bytes in use or about to be, over the limit of {} bytes: every job left is unfinished",
+                     used, limit);
+}
+
+void JobManager::restore(const std::function<LoadedScene(const std::string&)>& parse) {
+    if (!store_) return;
+    size_t restored = 0, unfinished = 0;
+    for (const StoredJob& stored : store_->load()) {
+        std::shared_ptr<Job> job;
+        try {
+            job = restore_job(stored, parse(stored.request));
+        } catch (const std::exception& e) {
+            spdlog::error("store: job {} left out: its request is not accepted any more: {}", stored.id, e.what());
+            continue;
+        }
+        std::lock_guard lock(mutex_);
+        jobs_[job->id()] = job;
+        order_.push_back(job->id());
+        ++restored;
+        if (!is_final(job->snapshot().state)) {
+            queue_.push_back(job);
+            ++unfinished;
         }
     }
+    {
+        std::lock_guard lock(mutex_);
+        forget_old_finished();
+    }
+    work_.notify_all();
+    spdlog::info("store {}: {} jobs restored, {} of them to resume; {} bytes in use, limit {} bytes",
+                 store_->config().dir.string(), restored, unfinished, store_->bytes_used(), store_->config().limit_bytes);
+}
+
+std::shared_ptr<Job> JobManager::restore_job(const StoredJob& stored, const LoadedScene& loaded) const {
+    LoadedScene scene = loaded;
+    if (scene.settings.time_limit > 0)  // the time rendered before the restart counts
+        scene.settings.time_limit = std::max(1e-3, scene.settings.time_limit - stored.progress.seconds);
+    auto job = std::make_shared<Job>(stored.id, scene, store_.get(), stored.created);
+    const bool final = is_final(stored.state);
+    const FilmFile which = final ? FilmFile::final : FilmFile::checkpoint;
+    try {
+        if (final) {
+            std::optional<Partial> film;
+            if (stored.state != JobState::failed && store_->has_film(stored.id, which))
+                film = store_->load_film(stored.id, which);
+            job->restore_final(stored.state, stored.error, stored.progress, film ? &*film : nullptr);
+        } else if (store_->has_film(stored.id, which)) {
+            job->resume(store_->load_film(stored.id, which), stored.progress);
+            spdlog::info("store: job {} resumes from its checkpoint at {} spp", stored.id, job->snapshot().progress.spp_done);
+        }
+    } catch (const std::exception& e) {
+        job->fail(store_->film_path(stored.id, which).string() + ": " + e.what());
+    }
+    return job;
 }
 
 void JobManager::slot() {
@@ -73,6 +155,9 @@ void JobManager::slot() {
         job->run(pool_);
         std::lock_guard lock(mutex_);
         --running_;
+        // The job's final film replaced its checkpoint. Not while stopping: suspended jobs look
+        // ended in memory, but the store keeps them to resume.
+        if (store_ && !stopping_) forget_old_finished();
     }
 }
 
@@ -109,7 +194,7 @@ void JobManager::shutdown() {
         for (const auto& [id, job] : jobs_) all.push_back(job);
     }
     work_.notify_all();
-    for (const auto& job : all) job->cancel();
+    for (const auto& job : all) store_ ? job->suspend() : job->cancel();
     spdlog::info("job manager stopped: {} jobs cancelled or finished", all.size());
 }
 

@@ -50,6 +50,13 @@ std::function<int()> add_serve_command(CLI::App& app) {
     cmd->add_option("--web", o->config.web, "Folder of the web page");
     cmd->add_option("--max-jobs", o->config.limits.max_running, "Jobs rendering at once")->check(CLI::PositiveNumber);
     cmd->add_option("--max-queued", o->config.limits.max_queued, "Jobs waiting before new ones get 429");
+    cmd->add_option("--store", o->config.store.dir, "Folder that keeps every job (scene, state, film) across restarts");
+    cmd->add_option("--checkpoint-interval", o->config.store.checkpoint_interval,
+                    "Seconds between checkpoints of a running job's film (default 5)")
+        ->check(CLI::Range(0.0, 3600.0));
+    cmd->add_option("--store-limit", o->config.store.limit_bytes,
+                    "Bytes the store may hold; the oldest finished jobs are evicted beyond (default 2 GiB)")
+        ->check(CLI::PositiveNumber);
     return [o] { return run_serve(*o); };
 }
 

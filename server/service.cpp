@@ -4,10 +4,13 @@
 
 #include <spdlog/spdlog.h>
 
+#include "job_request.h"
+
 namespace glint {
 
 Service::Service(const ServiceConfig& config, const std::string& host, int port, unsigned render_threads)
-    : pool_(render_threads), jobs_(pool_, config.limits), api_(jobs_, pool_, config) {
+    : pool_(render_threads), jobs_(pool_, config.limits, config.store), api_(jobs_, pool_, config) {
+    jobs_.restore([&](const std::string& request) { return parse_job_request(request, config.scenes, config.limits); });
     // HTTP work gets its own threads, many of them: each open stream holds one (cpp-httplib is
     // blocking), and rendering never runs on them.
     server_.new_task_queue = [] { return new httplib::ThreadPool(64); };
