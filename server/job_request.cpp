@@ -62,7 +62,7 @@ LoadedScene parse_job_request(const std::string& body, const std::filesystem::pa
     nlohmann::json request;
     try {
         request = nlohmann::json::parse(body);
-    } catch (const nlohmann::json::parse_error&) {
+    } catch (const nlohmann::json::exception&) {  // syntax, or a number out of range (1e999)
         load_checked([&] { return parse_scene(body, scenes, limits.scene); });  // the scene parser's message
     }
     LoadedScene scene = request.is_object() && request.contains("preset")
