@@ -50,6 +50,7 @@ std::function<int()> add_serve_command(CLI::App& app) {
     cmd->add_option("--web", o->config.web, "Folder of the web page");
     cmd->add_option("--max-jobs", o->config.limits.max_running, "Jobs rendering at once")->check(CLI::PositiveNumber);
     cmd->add_option("--max-queued", o->config.limits.max_queued, "Jobs waiting before new ones get 429");
+    cmd->add_option("--token", o->config.token, "Bearer token the job routes require (needed off loopback)")->envname("GLINT_TOKEN");
     return [o] { return run_serve(*o); };
 }
 
