@@ -11,7 +11,6 @@ namespace glint {
 namespace {
 
 using nlohmann::json;
-constexpr int kMaxJsonDepth = 32;
 
 // A JSON value and the path that leads to it, for error messages.
 struct At {

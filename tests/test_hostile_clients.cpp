@@ -94,6 +94,18 @@ TEST(FuzzFindings, ANumberBeyondDoubleIsAMalformedRequest) {
     EXPECT_EQ(json::parse(res->body)["error"], "malformed JSON: number overflow parsing '1e999'");
 }
 
+// Found in review: the request parser read a preset request's JSON without the scene parser's
+// depth bound, so 16 MiB of '[' built 16 M nested arrays (about 1 GB) before any check.
+TEST(Limits, DeepNestingInAPresetRequestIsRefusedWhileParsing) {
+    Service service(config_with(), "127.0.0.1", 0, 1);
+    httplib::Client client("127.0.0.1", service.port());
+    const std::string deep = R"({"preset": "cornell", "x": )" + std::string(100000, '[') + std::string(100000, ']') + "}";
+    auto res = client.Post("/jobs", deep, "application/json");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 400);
+    EXPECT_EQ(json::parse(res->body)["error"], "JSON nested deeper than 32 levels");
+}
+
 class WithToken : public ::testing::Test {
 protected:
     void SetUp() override {
