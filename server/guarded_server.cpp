@@ -60,8 +60,7 @@ public:
     }
     void start_request(Clock::time_point deadline) {
         deadline_ = deadline;
-        timed_out_ = close_ = false;
-        wrote_ = false;
+        timed_out_ = wrote_ = close_ = false;
     }
     bool timed_out() const { return timed_out_; }
     bool wrote() const { return wrote_; }
