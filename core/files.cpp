@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
@@ -50,6 +51,9 @@ void write_file(const std::string& path, const std::vector<uint8_t>& bytes) {
 }
 
 std::vector<uint8_t> read_file(const std::string& path, size_t max_bytes) {
+    std::error_code error;
+    if (std::filesystem::exists(path, error) && !std::filesystem::is_regular_file(path, error))
+        throw FileError(path + " is not a regular file");
     std::ifstream in(path, std::ios::binary | std::ios::ate);
     if (!in) throw FileError("cannot open " + path);
     const auto size = static_cast<size_t>(in.tellg());
@@ -59,6 +63,19 @@ std::vector<uint8_t> read_file(const std::string& path, size_t max_bytes) {
     in.read(reinterpret_cast<char*>(bytes.data()), std::streamsize(size));
     if (!in) throw FileError("cannot read " + path);
     return bytes;
+}
+
+std::optional<std::filesystem::path> resolve_inside(const std::filesystem::path& folder, const std::string& relative) {
+    const std::filesystem::path name = relative;
+    if (relative.find('\0') != std::string::npos || name.has_root_path()) return std::nullopt;
+    std::error_code error;
+    const auto root = std::filesystem::weakly_canonical(folder, error);
+    if (error) return std::nullopt;
+    const auto full = std::filesystem::weakly_canonical(folder / name, error);
+    if (error) return std::nullopt;
+    const auto [end, _] = std::mismatch(root.begin(), root.end(), full.begin(), full.end());
+    if (end != root.end()) return std::nullopt;
+    return full;
 }
 
 }  // namespace glint

@@ -87,13 +87,18 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
     r.get<uint64_t>();  // magic
     if (r.get<uint32_t>() != kVersion) throw PartialError("unsupported partial file version");
     const auto width = r.get<uint32_t>(), height = r.get<uint32_t>();
-    if (width == 0 || height == 0 || bytes.size() != kHeader + kPixel * uint64_t(width) * height + kTrailer)
+    // Divides rather than multiplies: 64·W·H overflows 64 bits for W = H = 2^31.
+    const size_t body = bytes.size() - kHeader - kTrailer, pixels = body / kPixel;
+    if (width == 0 || height == 0 || width > uint32_t(INT32_MAX) || body % kPixel != 0 || pixels % width != 0 ||
+        pixels / width != height)
         throw PartialError("size does not match the header");
     Partial p;
     p.first_sample = r.get<uint32_t>();
     p.end_sample = r.get<uint32_t>();
     if (p.end_sample <= p.first_sample) throw PartialError("empty or reversed sample range");
-    p.encoding = r.get<uint32_t>() == 1 ? Encoding::srgb : Encoding::gamma22;
+    const auto encoding = r.get<uint32_t>();
+    if (encoding > 1) throw PartialError("unknown PNG encoding " + std::to_string(encoding) + " (0 gamma 2.2, 1 sRGB)");
+    p.encoding = encoding == 1 ? Encoding::srgb : Encoding::gamma22;
     p.fingerprint = r.get<uint64_t>();
     p.film = Film(int(width), int(height));
     for (PixelSums& px : p.film.pixels()) {

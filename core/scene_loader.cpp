@@ -11,7 +11,6 @@ namespace glint {
 namespace {
 
 using nlohmann::json;
-constexpr int kMaxJsonDepth = 32;
 
 // A JSON value and the path that leads to it, for error messages.
 struct At {
@@ -255,15 +254,12 @@ private:
         if (!at.value.is_string()) at.fail("must be a file name");
         const std::filesystem::path name = at.value.get<std::string>();
         if (folder_.empty()) at.fail("file references need a scene folder");
-        if (name.is_absolute()) at.fail("must be relative to the scene's folder");
-        // Resolve symlinks and "..", then require the result to stay inside the folder.
-        std::error_code error;
-        const auto root = std::filesystem::weakly_canonical(folder_, error);
-        const auto full = std::filesystem::weakly_canonical(folder_ / name, error);
-        const auto [end, _] = std::mismatch(root.begin(), root.end(), full.begin(), full.end());
-        if (error || end != root.end()) at.fail("must stay inside the scene's folder");
+        if (name.has_root_path()) at.fail("must be relative to the scene's folder");
+        // Symlinks and ".." are resolved first: the file itself must lie inside the folder.
+        const auto full = resolve_inside(folder_, name.string());
+        if (!full) at.fail("must stay inside the scene's folder");
         try {
-            return load_obj(full.string(), limits_.max_file_bytes);
+            return load_obj(full->string(), limits_.max_file_bytes);
         } catch (const std::exception& e) {
             at.fail(e.what());
         }
@@ -322,7 +318,7 @@ LoadedScene parse_scene(const std::string& json_text, const std::filesystem::pat
                 throw SceneError("", "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels", true);
             return true;
         });
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers like 1e999
         std::string what = e.what();
         throw SceneError("", "malformed JSON: " + what.substr(what.find(' ') + 1), true);
     }

@@ -4,8 +4,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include "auth.h"
 #include "files.h"
+#include "guarded_server.h"
 #include "job_request.h"
+#include "static_files.h"
 
 namespace glint {
 namespace {
@@ -81,7 +84,7 @@ void HttpApi::render(const httplib::Request& req, httplib::Response& res) {
     auto job = accept(req, res);
     if (!job) return;
     res.set_header("X-Glint-Job", job->id());
-    res.set_chunked_content_provider("image/png", [this, job](size_t, httplib::DataSink& sink) {
+    res.set_chunked_content_provider("image/png", [job](size_t, httplib::DataSink& sink) {
         if (!sink.is_writable()) {
             job->cancel();
             return false;
@@ -95,21 +98,41 @@ void HttpApi::render(const httplib::Request& req, httplib::Response& res) {
     });
 }
 
-bool HttpApi::admit_stream(httplib::Response& res) {
+// Streams are capped in total (503: the server is busy) and per remote address (429: this
+// client holds too many). Every admitted stream is released by its response's releaser.
+bool HttpApi::admit_stream(const httplib::Request& req, httplib::Response& res) {
     if (++open_streams_ > config_.limits.max_streams) {
         --open_streams_;
         res.set_header("Retry-After", "5");
         send_error(res, 503, "too many open streams (limit " + std::to_string(config_.limits.max_streams) + ")");
         return false;
     }
+    std::lock_guard lock(clients_mutex_);
+    size_t& mine = streams_by_client_[req.remote_addr];
+    if (mine >= config_.http.streams_per_client) {
+        --open_streams_;
+        if (mine == 0) streams_by_client_.erase(req.remote_addr);
+        res.set_header("Retry-After", "5");
+        send_error(res, 429, "too many open streams from " + req.remote_addr + " (limit " +
+                                 std::to_string(config_.http.streams_per_client) + " per client)");
+        return false;
+    }
+    ++mine;
     res.set_header("Cache-Control", "no-cache");
     return true;
 }
 
+void HttpApi::release_stream(const std::string& client) {
+    --open_streams_;
+    std::lock_guard lock(clients_mutex_);
+    const auto it = streams_by_client_.find(client);
+    if (it != streams_by_client_.end() && --it->second == 0) streams_by_client_.erase(it);
+}
+
 // multipart/x-mixed-replace: one PNG part per finished pass (the latest frame wins, none is
 // queued), then the closing boundary once the job has ended.
-void HttpApi::stream(const std::shared_ptr<Job>& job, httplib::Response& res) {
-    if (!admit_stream(res)) return;
+void HttpApi::stream(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res) {
+    if (!admit_stream(req, res)) return;
     res.set_chunked_content_provider(
         "multipart/x-mixed-replace; boundary=frame",
         [this, job, sent = uint64_t(0)](size_t, httplib::DataSink& sink) mutable {
@@ -129,12 +152,12 @@ void HttpApi::stream(const std::shared_ptr<Job>& job, httplib::Response& res) {
             }
             return true;
         },
-        [this](bool) { --open_streams_; });
+        [this, client = req.remote_addr](bool) { release_stream(client); });
 }
 
 // Server-Sent Events: the job's status after every pass, then a final `done` event.
-void HttpApi::events(const std::shared_ptr<Job>& job, httplib::Response& res) {
-    if (!admit_stream(res)) return;
+void HttpApi::events(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res) {
+    if (!admit_stream(req, res)) return;
     res.set_chunked_content_provider(
         "text/event-stream",
         [this, job, sent = uint64_t(0), last_write = Clock::now()](size_t, httplib::DataSink& sink) mutable {
@@ -154,7 +177,7 @@ void HttpApi::events(const std::shared_ptr<Job>& job, httplib::Response& res) {
             }
             return true;
         },
-        [this](bool) { --open_streams_; });
+        [this, client = req.remote_addr](bool) { release_stream(client); });
 }
 
 void HttpApi::install(httplib::Server& server) {
@@ -164,9 +187,16 @@ void HttpApi::install(httplib::Server& server) {
     server.set_keep_alive_max_count(5);
     server.set_keep_alive_timeout(5);
     server.set_tcp_nodelay(true);  // small JSON replies must not wait for delayed ACKs (Nagle)
-    server.set_pre_routing_handler([](const httplib::Request&, httplib::Response&) {
+    server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
         t_request_start = Clock::now();
-        return httplib::Server::HandlerResponse::Unhandled;
+        if (config_.token.empty() || !needs_token(req.path)) return httplib::Server::HandlerResponse::Unhandled;
+        const std::string refusal = check_token(req, config_.token);
+        if (refusal.empty()) return httplib::Server::HandlerResponse::Unhandled;
+        res.set_header("WWW-Authenticate", "Bearer");
+        res.set_header("Connection", "close");  // its body, if any, was never read
+        GuardedServer::close_after_response();
+        send_error(res, 401, refusal);
+        return httplib::Server::HandlerResponse::Handled;
     });
     server.set_logger([](const httplib::Request& req, const httplib::Response& res) {
         const double ms = std::chrono::duration<double, std::milli>(Clock::now() - t_request_start).count();
@@ -174,9 +204,15 @@ void HttpApi::install(httplib::Server& server) {
     });
     // Every error gets a JSON body, also those cpp-httplib answers itself (404, 413, ...).
     server.set_error_handler(httplib::Server::HandlerWithResponse(
-        [](const httplib::Request&, httplib::Response& res) {
-            if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
-            send_error(res, res.status, reason(res.status));
+        [request_timeout = config_.http.request_timeout](const httplib::Request&, httplib::Response& res) {
+            if (GuardedServer::request_timed_out()) {
+                res.set_header("Connection", "close");  // GuardedServer closes it
+                send_error(res, 408, "request not received within " + std::to_string(request_timeout.count()) + " ms");
+            } else if (res.body.empty()) {
+                send_error(res, res.status, reason(res.status));
+            } else {
+                return httplib::Server::HandlerResponse::Unhandled;
+            }
             return httplib::Server::HandlerResponse::Handled;
         }));
     server.set_exception_handler([](const httplib::Request&, httplib::Response& res, std::exception_ptr e) {
@@ -224,10 +260,10 @@ void HttpApi::install(httplib::Server& server) {
         res.set_content(reinterpret_cast<const char*>(pfm.data()), pfm.size(), "image/x-portable-floatmap");
     });
     server.Get(job + "/stream", [this](const httplib::Request& req, httplib::Response& res) {
-        if (auto j = job_or_404(req, res)) stream(j, res);
+        if (auto j = job_or_404(req, res)) stream(req, j, res);
     });
     server.Get(job + "/events", [this](const httplib::Request& req, httplib::Response& res) {
-        if (auto j = job_or_404(req, res)) events(j, res);
+        if (auto j = job_or_404(req, res)) events(req, j, res);
     });
     server.Get("/presets", [this](const httplib::Request&, httplib::Response& res) {
         send_json(res, list_presets(config_.scenes));
@@ -246,8 +282,12 @@ void HttpApi::install(httplib::Server& server) {
                         {"render_threads", pool_.size()},
                         {"render_batches_waiting", pool_.pending_batches()}});
     });
-    if (!server.set_mount_point("/", config_.web.string()))
+    // Last, so that it only gets what no route above matched.
+    if (!std::filesystem::is_directory(config_.web))
         spdlog::warn("web folder {} not found: the page is not served", config_.web.string());
+    server.Get("/.*", [this](const httplib::Request& req, httplib::Response& res) {
+        serve_static_file(config_.web, req, res);
+    });
 }
 
 }  // namespace glint

@@ -3,7 +3,10 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
+#include <map>
+#include <mutex>
 
 #include <httplib.h>
 
@@ -12,11 +15,20 @@
 
 namespace glint {
 
+// What one client and one connection may hold (job limits are in ServiceLimits).
+struct HttpLimits {
+    size_t streams_per_client = 8;  // per remote address; the page holds 2 per job it shows
+    std::chrono::milliseconds request_timeout{20000};  // request line, headers and body together
+    size_t threads = 64;  // HTTP threads: each open stream holds one (cpp-httplib is blocking)
+};
+
 struct ServiceConfig {
     std::filesystem::path scenes = "scenes";
     std::filesystem::path web = "web";
     ServiceLimits limits;
     StoreConfig store;  // --store: jobs survive a restart (job_store.h)
+    HttpLimits http;
+    std::string token;  // when set, job routes need "Authorization: Bearer TOKEN" (see auth.h)
 };
 
 class HttpApi {
@@ -30,16 +42,19 @@ public:
 private:
     void submit(const httplib::Request& req, httplib::Response& res);
     void render(const httplib::Request& req, httplib::Response& res);
-    void stream(const std::shared_ptr<Job>& job, httplib::Response& res);
-    void events(const std::shared_ptr<Job>& job, httplib::Response& res);
+    void stream(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res);
+    void events(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res);
     std::shared_ptr<Job> job_or_404(const httplib::Request& req, httplib::Response& res) const;
     std::shared_ptr<Job> accept(const httplib::Request& req, httplib::Response& res);
-    bool admit_stream(httplib::Response& res);
+    bool admit_stream(const httplib::Request& req, httplib::Response& res);
+    void release_stream(const std::string& client);
 
     JobManager& jobs_;
     ThreadPool& pool_;
     ServiceConfig config_;
     std::atomic<size_t> open_streams_{0};
+    std::mutex clients_mutex_;
+    std::map<std::string, size_t> streams_by_client_;  // remote address -> open streams
     std::atomic<bool> stopping_{false};
 };
 

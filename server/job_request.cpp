@@ -61,8 +61,13 @@ std::filesystem::path preset_path(const std::filesystem::path& scenes, const std
 LoadedScene parse_job_request(const std::string& body, const std::filesystem::path& scenes, const ServiceLimits& limits) {
     nlohmann::json request;
     try {
-        request = nlohmann::json::parse(body);
-    } catch (const nlohmann::json::parse_error&) {
+        // Bounded like the scene parser: 16 MiB of '[' would otherwise build 16 M nested arrays.
+        request = nlohmann::json::parse(body, [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+            if (depth > kMaxJsonDepth)
+                throw RequestError(400, "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+            return true;
+        });
+    } catch (const nlohmann::json::exception&) {  // syntax, or a number out of range (1e999)
         load_checked([&] { return parse_scene(body, scenes, limits.scene); });  // the scene parser's message
     }
     LoadedScene scene = request.is_object() && request.contains("preset")

@@ -57,6 +57,7 @@ std::function<int()> add_serve_command(CLI::App& app) {
     cmd->add_option("--store-limit", o->config.store.limit_bytes,
                     "Bytes the store may hold; the oldest finished jobs are evicted beyond (default 2 GiB)")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--token", o->config.token, "Bearer token the job routes require (needed off loopback)")->envname("GLINT_TOKEN");
     return [o] { return run_serve(*o); };
 }
 

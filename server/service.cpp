@@ -4,16 +4,21 @@
 
 #include <spdlog/spdlog.h>
 
+#include "auth.h"
 #include "job_request.h"
 
 namespace glint {
 
 Service::Service(const ServiceConfig& config, const std::string& host, int port, unsigned render_threads)
-    : pool_(render_threads), jobs_(pool_, config.limits, config.store), api_(jobs_, pool_, config) {
+    : pool_(render_threads), jobs_(pool_, config.limits, config.store), api_(jobs_, pool_, config),
+      server_(config.http.request_timeout) {
+    if (config.token.empty() && !is_loopback_host(host))
+        throw std::runtime_error("refusing to listen on " + host +
+                                 " without a token: anyone who reaches it could run jobs; set --token or GLINT_TOKEN");
     jobs_.restore([&](const std::string& request) { return parse_job_request(request, config.scenes, config.limits); });
     // HTTP work gets its own threads, many of them: each open stream holds one (cpp-httplib is
     // blocking), and rendering never runs on them.
-    server_.new_task_queue = [] { return new httplib::ThreadPool(64); };
+    server_.new_task_queue = [n = config.http.threads] { return new httplib::ThreadPool(n); };
     api_.install(server_);
     port_ = port == 0 ? server_.bind_to_any_port(host) : (server_.bind_to_port(host, port) ? port : -1);
     if (port_ < 0) throw std::runtime_error("cannot listen on " + host + ":" + std::to_string(port));

@@ -5,6 +5,7 @@
 #include <memory>
 #include <thread>
 
+#include "guarded_server.h"
 #include "http_api.h"
 
 namespace glint {
@@ -23,7 +24,7 @@ private:
     ThreadPool pool_;
     JobManager jobs_;
     HttpApi api_;
-    httplib::Server server_;
+    GuardedServer server_;
     int port_ = 0;
     std::thread http_;
 };

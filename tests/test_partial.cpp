@@ -2,6 +2,8 @@
 // refuses what it must.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "fingerprint.h"
 #include "partial_file.h"
 #include "test_support.h"
@@ -77,6 +79,48 @@ TEST(Partial, RefusesGapsOverlapsForeignPartsAndDamage) {
     EXPECT_EQ(error({std::vector<uint8_t>(20, 0)}), "not a glint partial file");
     EXPECT_EQ(error({}), "no parts to merge");
     EXPECT_EQ(error({b, a, c}), "no error");
+}
+
+// The file's bytes with a correct checksum after the header fields were edited.
+std::vector<uint8_t> with_checksum(std::vector<uint8_t> bytes) {
+    bytes.resize(bytes.size() - 8);
+    Fnv1a h;
+    h.bytes(bytes.data(), bytes.size());
+    const uint64_t sum = h.digest();
+    const auto* p = reinterpret_cast<const uint8_t*>(&sum);
+    bytes.insert(bytes.end(), p, p + 8);
+    return bytes;
+}
+
+template <typename T>
+void put(std::vector<uint8_t>& bytes, size_t offset, T value) {
+    std::memcpy(&bytes[offset], &value, sizeof value);
+}
+
+std::string decode_error(const std::vector<uint8_t>& bytes) {
+    try {
+        decode_partial(bytes);
+    } catch (const PartialError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+// Found by fuzzing (tests/fuzz/regressions/partial/): an unknown encoding was read as gamma 2.2,
+// and a 2^31 x 2^31 header passed the size check (64·W·H wrapped to 0) and asked for 2^62 pixels.
+TEST(Partial, RefusesUnknownEncodingsAndSizesThatOverflow) {
+    Partial p;
+    p.end_sample = 4;
+    const std::vector<uint8_t> good = encode_partial(p);
+    std::vector<uint8_t> encoding = good;
+    put(encoding, 28, uint32_t(168));
+    EXPECT_EQ(decode_error(with_checksum(encoding)), "unknown PNG encoding 168 (0 gamma 2.2, 1 sRGB)");
+    std::vector<uint8_t> huge(good.begin(), good.begin() + 40);
+    put(huge, 12, uint32_t(1) << 31);
+    put(huge, 16, uint32_t(1) << 31);
+    huge.resize(48);
+    EXPECT_EQ(decode_error(with_checksum(huge)), "size does not match the header");
+    EXPECT_EQ(decode_error(good), "no error");
 }
 
 TEST(Partial, FingerprintsDependOnWhatDecidesPixels) {

@@ -88,6 +88,9 @@ TEST(SceneLoader, MalformedAndHostileJsonIsRejectedCleanly) {
     EXPECT_EQ(error_of("[1, 2]"), "must be an object");
     EXPECT_EQ(error_of("{\"x\": NaN}").rfind("malformed JSON", 0), 0u);
     EXPECT_EQ(error_of(std::string(100000, '[') + std::string(100000, ']')), "JSON nested deeper than 32 levels");
+    // Found by fuzzing (tests/fuzz/regressions/scene/number-overflow.json): nlohmann reports a
+    // number beyond double's range as out_of_range, not parse_error; it escaped as a crash.
+    EXPECT_EQ(error_of(R"({"film": {"width": 1e2612}})"), "malformed JSON: number overflow parsing '1e2612'");
 }
 
 class SceneFolder : public ::testing::Test {
@@ -123,6 +126,24 @@ TEST_F(SceneFolder, RefusesFilesOutsideTheSceneFolder) {
     EXPECT_EQ(mesh("missing.obj").rfind("objects[0].file: cannot open", 0), 0u);
     EXPECT_EQ(error_of(R"({"objects": [{"type": "mesh", "file": "meshes/quad.obj"}]})"),
               "objects[0].file: file references need a scene folder");
+}
+
+TEST_F(SceneFolder, RefusesEveryWayOutAndAcceptsLinksWithin) {
+    std::filesystem::create_directories(root_ / "private");
+    write(root_ / "private" / "hidden.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::filesystem::create_symlink(root_ / "private", root_ / "scene" / "dirlink");
+    std::filesystem::create_symlink(root_ / "scene" / "meshes" / "quad.obj", root_ / "scene" / "inner.obj");
+    const std::string outside = "objects[0].file: must stay inside the scene's folder";
+    EXPECT_EQ(mesh("dirlink/hidden.obj"), outside);
+    EXPECT_EQ(mesh("./../outside.obj"), outside);
+    EXPECT_EQ(mesh("meshes/../../scene/../outside.obj"), outside);
+    EXPECT_EQ(mesh("meshes/quad.obj\\u0000../../outside.obj"), outside);
+    EXPECT_EQ(mesh("/etc/passwd"), "objects[0].file: must be relative to the scene's folder");
+    // Scene files are not URLs: %2e%2e is a file name like any other, looked up inside.
+    EXPECT_EQ(mesh("%2e%2e/outside.obj"), "objects[0].file: cannot open " + (root_ / "scene" / "%2e%2e" / "outside.obj").string());
+    EXPECT_EQ(mesh(""), "objects[0].file: " + (root_ / "scene").string() + " is not a regular file");
+    EXPECT_EQ(mesh("meshes"), "objects[0].file: " + (root_ / "scene" / "meshes").string() + " is not a regular file");
+    EXPECT_EQ(mesh("inner.obj"), "no error");  // a symlink that stays inside is fine
 }
 
 }  // namespace

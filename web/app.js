@@ -25,6 +25,31 @@ function showSpp() {
   ui.sppLabel.textContent = `${k}×4 = ${k * 4}`;
 }
 
+// The server's bearer token, when it needs one (glint serve --token): from the URL fragment
+// (#token=...), kept for this tab's session, or asked for when the server answers 401. fetch
+// sends it as a header; <img>, download links and EventSource cannot, so their URLs carry it
+// as ?token= (the server accepts that on the stream, events and image routes only).
+const auth = { token: new URLSearchParams(location.hash.slice(1)).get("token") || sessionStorage.getItem("glint-token") || "" };
+if (location.hash.includes("token=")) window.history.replaceState(null, "", location.pathname + location.search);
+if (auth.token) sessionStorage.setItem("glint-token", auth.token);
+
+function withToken(url) {
+  return auth.token ? `${url}${url.includes("?") ? "&" : "?"}token=${encodeURIComponent(auth.token)}` : url;
+}
+
+async function api(url, options = {}) {
+  const send = () => fetch(url, {
+    ...options, headers: { ...options.headers, ...(auth.token && { Authorization: `Bearer ${auth.token}` }) },
+  });
+  const response = await send();
+  if (response.status !== 401) return response;
+  const token = window.prompt("This glint server needs its access token:");
+  if (!token) return response;
+  auth.token = token;
+  sessionStorage.setItem("glint-token", token);
+  return send();
+}
+
 let job = null;      // {id, events}
 let history = [];    // [seconds, error] for the plot
 let zoom = 1;
@@ -79,7 +104,7 @@ async function startRender() {
   setRunning(true);
   let response;
   try {
-    response = await fetch("/jobs", { method: "POST", headers: { "Content-Type": "application/json" }, body: requestBody() });
+    response = await api("/jobs", { method: "POST", headers: { "Content-Type": "application/json" }, body: requestBody() });
   } catch (e) {
     showSceneError(`cannot reach the server: ${e.message}`);
     return setRunning(false);
@@ -94,10 +119,10 @@ async function startRender() {
 
 function watch(status) {
   history = [];
-  job = { id: status.id, events: new EventSource(status.urls.events) };
-  ui.image.src = status.urls.stream;
-  ui.png.href = status.urls.png;
-  ui.pfm.href = status.urls.pfm;
+  job = { id: status.id, events: new EventSource(withToken(status.urls.events)) };
+  ui.image.src = withToken(status.urls.stream);
+  ui.png.href = withToken(status.urls.png);
+  ui.pfm.href = withToken(status.urls.pfm);
   showFigures(status);
   job.events.addEventListener("progress", (e) => showFigures(JSON.parse(e.data)));
   job.events.addEventListener("done", (e) => finish(JSON.parse(e.data)));
@@ -109,7 +134,7 @@ function finish(status) {
   job.events.close();
   if (status.urls) {
     showFigures(status);
-    ui.image.src = `${status.urls.png}?final=${status.frame}`;  // the last frame, even if the stream was cut
+    ui.image.src = withToken(`${status.urls.png}?final=${status.frame}`);  // the last frame, even if the stream was cut
   } else {
     figures.state.textContent = status.state;
   }
@@ -118,7 +143,7 @@ function finish(status) {
 }
 
 async function cancelRender() {
-  if (job) await fetch(`/jobs/${job.id}`, { method: "DELETE" });
+  if (job) await api(`/jobs/${job.id}`, { method: "DELETE" });
 }
 
 function format(value, digits = 3) {

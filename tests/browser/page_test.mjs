@@ -3,35 +3,9 @@
 // twice, zooms and pans, saves a screenshot, cancels, and sees a server error shown next to the
 // scene field. Then stops the server with SIGTERM and expects a clean exit.
 // Usage: node page_test.mjs GLINT_BINARY SOURCE_DIR SCREENSHOT.png
-import { spawn } from "node:child_process";
-import net from "node:net";
-import { chromium } from "playwright-core";
+import { check, launchBrowser, results, startServer, waitFor } from "./support.mjs";
 
 const [glint, source, screenshot] = process.argv.slice(2);
-const results = { passed: 0, failed: 0 };
-function check(what, ok, detail = "") {
-  console.log(`${ok ? "ok" : "FAILED"}: ${what}${ok || !detail ? "" : ` (${detail})`}`);
-  results[ok ? "passed" : "failed"] += 1;
-}
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-
-function freePort() {
-  return new Promise((resolve) => {
-    const probe = net.createServer().listen(0, "127.0.0.1", () => {
-      const { port } = probe.address();
-      probe.close(() => resolve(port));
-    });
-  });
-}
-
-async function waitFor(predicate, ms, what) {
-  const deadline = Date.now() + ms;
-  while (Date.now() < deadline) {
-    if (await predicate()) return true;
-    await sleep(100);
-  }
-  throw new Error(`timed out waiting for ${what}`);
-}
 
 // A hash of the image's current pixels (for a multipart <img>, its current frame).
 function imageHash() {
@@ -48,19 +22,11 @@ function imageHash() {
   return `${canvas.width}x${canvas.height}:${h}`;
 }
 
-const port = await freePort();
-const base = `http://127.0.0.1:${port}`;
-const server = spawn(glint, ["serve", "--port", String(port), "--threads", "2", "--scenes", `${source}/scenes`, "--web", `${source}/web`],
-                     { stdio: ["ignore", "ignore", "inherit"] });
-const exited = new Promise((resolve) => server.on("exit", (code, signal) => resolve({ code, signal })));
-let browser;
+let browser, server, exited;
 try {
-  await waitFor(async () => (await fetch(`${base}/health`).catch(() => null))?.ok, 10000, "the server");
-  browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
-    args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking", "--disable-component-update",
-           "--disable-sync", "--no-first-run"],
-  });
+  let base;
+  ({ base, server, exited } = await startServer(glint, source));
+  browser = await launchBrowser();
   const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
   const pageErrors = [];
   page.on("pageerror", (e) => pageErrors.push(e.message));
@@ -116,8 +82,8 @@ try {
   check("the browser session", false, e.message);
 } finally {
   await browser?.close();
-  server.kill("SIGTERM");
-  const { code } = await exited;
+  server?.kill("SIGTERM");
+  const { code } = server ? await exited : { code: "not started" };
   check("SIGTERM stops the server cleanly (exit 0)", code === 0, `exit ${code}`);
 }
 console.log(`browser: ${results.passed} passed, ${results.failed} failed`);

@@ -1,0 +1,28 @@
+// Bearer tokens: a server reachable from other machines admits to its job routes only requests
+// that carry the token it was started with.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include <httplib.h>
+
+namespace glint {
+
+// 127.0.0.0/8, ::1 (also as ::ffff:127.x.y.z) and the name "localhost". Any other name counts
+// as reachable from outside, whatever it resolves to.
+bool is_loopback_host(const std::string& host);
+
+// Compares in time that depends only on the expected token's length.
+bool same_secret(std::string_view given, std::string_view expected);
+
+// Routes that start, cancel or read jobs need the token; the page, presets and /health do not.
+bool needs_token(const std::string& path);
+// Routes that <img>, <a> and EventSource load, which cannot send headers: the token may come
+// as the query parameter `token` there.
+bool token_in_query_allowed(const httplib::Request& req);
+
+// Empty when the request may proceed, else why not (answered with 401).
+std::string check_token(const httplib::Request& req, const std::string& token);
+
+}  // namespace glint

@@ -1,0 +1,60 @@
+// The page against a server started with a token (GLINT_TOKEN): opened with #token=... it renders
+// (POST with the bearer header, stream and events with ?token=) and hides the token from the
+// address bar; opened without one, a refused render asks for the token and then succeeds.
+// Usage: node token_test.mjs GLINT_BINARY SOURCE_DIR
+import { check, launchBrowser, results, startServer, waitFor } from "./support.mjs";
+
+const [glint, source] = process.argv.slice(2);
+const token = "browser-test-token";
+
+async function renderSmall(page) {
+  await page.selectOption("#size", "128x96");
+  await page.locator("#spp").fill("0");
+  await page.click("#render");
+}
+const finished = (page) => async () => (await page.textContent("#fig-state")) === "done" &&
+  page.evaluate(() => document.getElementById("image").naturalWidth === 128);
+
+let browser, server, exited;
+try {
+  let base;
+  ({ base, server, exited } = await startServer(glint, source, { GLINT_TOKEN: token }));
+  const anonymous = await fetch(`${base}/jobs`);
+  check("the API refuses a request without the token (401)", anonymous.status === 401, `status ${anonymous.status}`);
+  browser = await launchBrowser();
+
+  const page = await browser.newPage();
+  const pageErrors = [];
+  page.on("pageerror", (e) => pageErrors.push(e.message));
+  await page.goto(`${base}/#token=${token}`);
+  await waitFor(() => page.evaluate(() => document.getElementById("scene-json").value.includes("camera")), 10000, "the preset");
+  check("the token leaves the address bar", !page.url().includes(token), page.url());
+  await renderSmall(page);
+  await waitFor(finished(page), 60000, "the render with the token from the fragment");
+  check("a render with the token from the URL fragment finishes and shows its image", true);
+  const href = await page.getAttribute("#download-png", "href");
+  check("the download link carries the token", href.endsWith(`/image.png?token=${token}`), href);
+  check("the page raised no script errors", pageErrors.length === 0, pageErrors.join("; "));
+
+  const fresh = await (await browser.newContext()).newPage();
+  await fresh.goto(base);
+  await waitFor(() => fresh.evaluate(() => document.getElementById("scene-json").value.includes("camera")), 10000, "the preset");
+  fresh.once("dialog", (d) => d.dismiss());
+  await renderSmall(fresh);
+  await waitFor(() => fresh.isVisible("#scene-error"), 10000, "the refusal");
+  const error = await fresh.textContent("#scene-error");
+  check("without a token the refusal is shown", error.startsWith("this server needs a bearer token"), error);
+  fresh.once("dialog", (d) => d.accept(token));
+  await fresh.click("#render");
+  await waitFor(finished(fresh), 60000, "the render with the token typed in");
+  check("the token typed into the prompt is used", true);
+} catch (e) {
+  check("the browser session", false, e.message);
+} finally {
+  await browser?.close();
+  server?.kill("SIGTERM");
+  const { code } = server ? await exited : { code: "not started" };
+  check("SIGTERM stops the server cleanly (exit 0)", code === 0, `exit ${code}`);
+}
+console.log(`browser-token: ${results.passed} passed, ${results.failed} failed`);
+process.exit(results.failed ? 1 : 0);

@@ -1,0 +1,70 @@
+#include "harnesses.h"
+
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "fingerprint.h"
+#include "job_request.h"
+#include "obj_loader.h"
+#include "partial_file.h"
+#include "scene_loader.h"
+
+namespace glint::fuzz {
+namespace {
+
+std::string text(const uint8_t* data, size_t size) { return std::string(reinterpret_cast<const char*>(data), size); }
+
+// A broken property is a finding like a crash; abort so libFuzzer keeps the input.
+void require(bool property) {
+    if (!property) std::abort();
+}
+
+}  // namespace
+
+std::filesystem::path mesh_folder() { return GLINT_FUZZ_DIR "/corpus/obj"; }
+std::filesystem::path scenes_folder() { return GLINT_SCENES_DIR; }
+
+void scene(const uint8_t* data, size_t size) {
+    try {
+        const LoadedScene loaded = parse_scene(text(data, size), mesh_folder());
+        require(loaded.scene != nullptr);
+    } catch (const SceneError&) {
+    }
+}
+
+void obj(const uint8_t* data, size_t size) {
+    try {
+        const ObjMesh mesh = parse_obj(text(data, size));
+        for (const auto& t : mesh.triangles)
+            for (const uint32_t v : t) require(v < mesh.vertices.size());
+        require(to_triangles(mesh).size() == mesh.triangles.size());
+    } catch (const ObjError&) {
+    }
+}
+
+// The checksum would stop almost every mutation at the first check, so the harness appends the
+// right one: the fuzzer explores the header and body checks behind it. A file that decodes must
+// encode to the same bytes (nothing is read leniently).
+void partial(const uint8_t* data, size_t size) {
+    std::vector<uint8_t> bytes(data, data + size);
+    Fnv1a h;
+    h.bytes(bytes.data(), bytes.size());
+    const uint64_t sum = h.digest();
+    const auto* p = reinterpret_cast<const uint8_t*>(&sum);
+    bytes.insert(bytes.end(), p, p + sizeof sum);
+    try {
+        require(encode_partial(decode_partial(bytes)) == bytes);
+    } catch (const PartialError&) {
+    }
+}
+
+void job_request(const uint8_t* data, size_t size) {
+    try {
+        const LoadedScene loaded = parse_job_request(text(data, size), scenes_folder(), ServiceLimits{});
+        require(loaded.scene != nullptr);
+    } catch (const RequestError&) {
+    }
+}
+
+}  // namespace glint::fuzz
