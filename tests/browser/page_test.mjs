@@ -3,7 +3,7 @@
 // twice, zooms and pans, saves a screenshot, cancels, and sees a server error shown next to the
 // scene field. Then stops the server with SIGTERM and expects a clean exit.
 // Usage: node page_test.mjs GLINT_BINARY SOURCE_DIR SCREENSHOT.png
-import { check, launchBrowser, results, startServer, waitFor } from "./support.mjs";
+import { check, finish, launchBrowser, startServer, waitFor } from "./support.mjs";
 
 const [glint, source, screenshot] = process.argv.slice(2);
 
@@ -80,11 +80,5 @@ try {
   check("the page raised no script errors", pageErrors.length === 0, pageErrors.join("; "));
 } catch (e) {
   check("the browser session", false, e.message);
-} finally {
-  await browser?.close();
-  server?.kill("SIGTERM");
-  const { code } = server ? await exited : { code: "not started" };
-  check("SIGTERM stops the server cleanly (exit 0)", code === 0, `exit ${code}`);
 }
-console.log(`browser: ${results.passed} passed, ${results.failed} failed`);
-process.exit(results.failed ? 1 : 0);
+await finish("browser", browser, server, exited);

@@ -48,3 +48,13 @@ export function launchBrowser() {
            "--disable-sync", "--no-first-run"],
   });
 }
+
+// Closes the browser, stops the server with SIGTERM (it must exit 0), prints the tally and exits.
+export async function finish(name, browser, server, exited) {
+  await browser?.close();
+  server?.kill("SIGTERM");
+  const { code } = server ? await exited : { code: "not started" };
+  check("SIGTERM stops the server cleanly (exit 0)", code === 0, `exit ${code}`);
+  console.log(`${name}: ${results.passed} passed, ${results.failed} failed`);
+  process.exit(results.failed ? 1 : 0);
+}

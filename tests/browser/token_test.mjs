@@ -2,7 +2,7 @@
 // (POST with the bearer header, stream and events with ?token=) and hides the token from the
 // address bar; opened without one, a refused render asks for the token and then succeeds.
 // Usage: node token_test.mjs GLINT_BINARY SOURCE_DIR
-import { check, launchBrowser, results, startServer, waitFor } from "./support.mjs";
+import { check, finish, launchBrowser, startServer, waitFor } from "./support.mjs";
 
 const [glint, source] = process.argv.slice(2);
 const token = "browser-test-token";
@@ -50,11 +50,5 @@ try {
   check("the token typed into the prompt is used", true);
 } catch (e) {
   check("the browser session", false, e.message);
-} finally {
-  await browser?.close();
-  server?.kill("SIGTERM");
-  const { code } = server ? await exited : { code: "not started" };
-  check("SIGTERM stops the server cleanly (exit 0)", code === 0, `exit ${code}`);
 }
-console.log(`browser-token: ${results.passed} passed, ${results.failed} failed`);
-process.exit(results.failed ? 1 : 0);
+await finish("browser-token", browser, server, exited);
