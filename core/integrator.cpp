@@ -3,6 +3,22 @@
 #include "sampling.h"
 
 namespace glint {
+namespace {
+
+// The shape of the path so far, for handing caustic paths to light tracing.
+enum class Shape { camera, diffuse, caustic, other };  // caustic: diffuse+ then specular+
+
+Shape extend(Shape shape, bool diffuse) {
+    switch (shape) {
+        case Shape::camera: return diffuse ? Shape::diffuse : Shape::other;
+        case Shape::diffuse: return diffuse ? Shape::diffuse : Shape::caustic;
+        case Shape::caustic: return diffuse ? Shape::other : Shape::caustic;
+        case Shape::other: return Shape::other;
+    }
+    return Shape::other;
+}
+
+}  // namespace
 
 Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, Rng& rng) const {
     const double u_pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
@@ -20,6 +36,8 @@ Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const 
 Rgb PathTracer::radiance(Ray ray, Rng& rng) const {
     const IntegratorSettings& settings = scene_.integrator();
     const bool nee = settings.light_sampling && !scene_.lights().empty();
+    const bool light_tracing = scene_.light_tracing();
+    Shape shape = Shape::camera;
     Rgb result{0}, throughput{1};
     uint32_t self = kNoPrimitive;
     bool specular = true;  // the camera "samples" its ray like a specular bounce: no MIS
@@ -33,7 +51,9 @@ Rgb PathTracer::radiance(Ray ray, Rng& rng) const {
         }
         const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
         const Material& m = scene_.material(hit.prim);
-        if (m.is_emissive()) {
+        const bool traced_from_light = light_tracing && shape == Shape::caustic &&
+                                       scene_.caustic_emitter().covers(hit.prim, si.p, self);
+        if (m.is_emissive() && !traced_from_light) {
             // Emission found by BSDF sampling; where NEE could also have found it, MIS-weight it.
             const double w = nee && !specular
                                  ? power_heuristic(bsdf_pdf, scene_.lights().pdf(previous, self, si))
@@ -51,6 +71,7 @@ Rgb PathTracer::radiance(Ray ray, Rng& rng) const {
             if (rng.uniform() >= survive) break;
             throughput *= 1 / survive;
         }
+        shape = extend(shape, m.type == MaterialType::diffuse);
         specular = bs.specular;
         bsdf_pdf = bs.pdf;
         previous = si.p;
