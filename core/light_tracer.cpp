@@ -37,7 +37,6 @@ void LightTracer::trace(Rng& rng) const {
     Ray ray = e.ray;
     uint32_t self = e.light;
     Rgb throughput{1};
-    bool diffuse_seen = false;
     // The light is the path's first surface hit; the path tracer caps the hits at max_depth.
     for (int hits = 2; hits <= settings.max_depth; ++hits) {
         Hit hit;
@@ -46,10 +45,8 @@ void LightTracer::trace(Rng& rng) const {
         const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
         const Material& m = scene_.material(hit.prim);
         if (m.type == MaterialType::diffuse) {
-            diffuse_seen = true;
             splat(si, ray.d, m, e.weight * throughput);
-        } else if (diffuse_seen) {
-            return;  // diffuse → specular → ... on the eye's side: the path tracer's
+            return;
         }
         // smallpt's BSDFs carry no η² and Schlick's term uses the outer cosine, so sampling
         // them from the light side gives the adjoint weights.

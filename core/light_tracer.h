@@ -1,8 +1,10 @@
 // Light tracing of caustic paths: from a light, through one or more specular bounces (the first
-// on a specular sphere the CausticEmitter aims at), then diffuse bounces, each diffuse vertex
-// connected to the eye and splatted onto the film with the pixel filter's weight. It estimates
-// exactly the paths the path tracer leaves out (camera → diffuse+ → specular+ → light, see
-// PathTracer), so the two add up to the image without double counting and without bias.
+// on a specular sphere the CausticEmitter aims at), to a diffuse surface, which is connected to
+// the eye and splatted onto the film with the pixel filter's weight. It estimates exactly the
+// paths the path tracer leaves out (camera → diffuse → specular+ → light, see PathTracer), so
+// the two add up to the image without double counting and without bias. Only caustics seen
+// directly: continuing diffusely from the light side (caustics seen after more diffuse
+// bounces) cost as much as the camera paths on smallpt's box and gained less than they cost.
 #pragma once
 
 #include "camera.h"

@@ -49,15 +49,21 @@ bool LightSet::sees_as_cone(const Vec3& p, uint32_t self, uint32_t prim) const {
     return length(p - s.centre) > s.radius;
 }
 
-bool LightSet::visible_cap(const Vec3& p, uint32_t self, const Light& light, SphereCap& cap) const {
+bool LightSet::visible_cap(const Vec3& p, uint32_t self, const Vec3& facing, const Light& light,
+                           SphereCap& cap) const {
     const Sphere& s = geometry_->sphere(light.prim);
     double best = 1 - s.radius / length(p - s.centre);  // the horizon
     bool found = false;
     for (uint32_t i = light.occluders_begin; i < light.occluders_end; ++i) {
         const Occluder& occ = occluders_[i];
-        if (occ.prim == self) continue;  // p on its surface: which side is up to rounding
         const Sphere& o = geometry_->sphere(occ.prim);
-        const SphereCap& side = length(p - o.centre) < o.radius ? occ.inside : occ.outside;
+        bool inside = length(p - o.centre) < o.radius;
+        if (occ.prim == self) {
+            // p on its surface: rounding cannot tell the side, the side p looks from can.
+            if (is_black(facing)) continue;
+            inside = dot(facing, o.centre - p) > 0;
+        }
+        const SphereCap& side = inside ? occ.inside : occ.outside;
         if (side.one_minus_cos < best) {
             best = side.one_minus_cos;
             cap = side;
@@ -75,8 +81,8 @@ double LightSet::area_pdf_to_solid_angle(const Vec3& p, const Vec3& q, const Vec
     return dist2 / (cos_light * area);
 }
 
-bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, double u2,
-                      LightSample& out) const {
+bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, double u2, LightSample& out,
+                      const Vec3& facing) const {
     if (lights_.empty()) return false;
     const size_t index = std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u_pick) - cdf_.begin(),
                                           lights_.size() - 1);
@@ -85,7 +91,7 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, do
     out.emission = light.emission;
     double pdf;
     SphereCap cap;
-    if (sees_as_cone(p, self, light.prim) && visible_cap(p, self, light, cap)) {
+    if (sees_as_cone(p, self, light.prim) && visible_cap(p, self, facing, light, cap)) {
         const Sphere& s = geometry_->sphere(light.prim);
         const Vec3 n = cap.sample(u1, u2);
         const Vec3 q = s.centre + n * s.radius;
@@ -127,12 +133,12 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, do
     return out.pdf > 0 && std::isfinite(out.pdf) && out.distance > 0;
 }
 
-double LightSet::pdf(const Vec3& p, uint32_t self, const SurfaceInteraction& hit) const {
+double LightSet::pdf(const Vec3& p, uint32_t self, const SurfaceInteraction& hit, const Vec3& facing) const {
     const uint32_t index = light_of_prim_[hit.prim];
     if (index == kNoLight) return 0;
     double pdf;
     SphereCap cap;
-    if (sees_as_cone(p, self, hit.prim) && visible_cap(p, self, lights_[index], cap)) {
+    if (sees_as_cone(p, self, hit.prim) && visible_cap(p, self, facing, lights_[index], cap)) {
         const Sphere& s = geometry_->sphere(hit.prim);
         if (!cap.contains(s, hit.p) || !(dot(hit.n, p - hit.p) > 0)) return 0;
         pdf = area_pdf_to_solid_angle(p, hit.p, hit.n, cap.area(s));

@@ -32,10 +32,12 @@ public:
     bool empty() const { return lights_.empty(); }
     size_t size() const { return lights_.size(); }
 
-    // A light point as seen from p, which lies on primitive `self` (or kNoPrimitive).
-    bool sample(const Vec3& p, uint32_t self, double u_pick, double u1, double u2, LightSample& out) const;
+    // A light point as seen from p, which lies on primitive `self` (or kNoPrimitive); `facing`
+    // is self's unit normal on the side p looks from (zero if unknown).
+    bool sample(const Vec3& p, uint32_t self, double u_pick, double u1, double u2, LightSample& out,
+                const Vec3& facing = Vec3{}) const;
     // The solid-angle density with which sample() would have produced `hit` seen from p.
-    double pdf(const Vec3& p, uint32_t self, const SurfaceInteraction& hit) const;
+    double pdf(const Vec3& p, uint32_t self, const SurfaceInteraction& hit, const Vec3& facing = Vec3{}) const;
 
 private:
     struct Light {
@@ -50,7 +52,7 @@ private:
     };
     // The smallest cap of the light that holds every point p can see, if smaller than the
     // light's horizon from p.
-    bool visible_cap(const Vec3& p, uint32_t self, const Light& light, SphereCap& cap) const;
+    bool visible_cap(const Vec3& p, uint32_t self, const Vec3& facing, const Light& light, SphereCap& cap) const;
     // Density of picking a point on the light by area, converted to solid angle at p.
     static double area_pdf_to_solid_angle(const Vec3& p, const Vec3& q, const Vec3& nq, double area);
     bool sees_as_cone(const Vec3& p, uint32_t self, uint32_t prim) const;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "sampling.h"
+#include "sobol.h"
 
 namespace glint {
 
@@ -35,7 +36,11 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
 Rgb RenderJob::sample(int x, int y, uint32_t index) const {
     const uint64_t pixel = uint64_t(y) * settings_.width + x;
     Rng rng(settings_.seed, pixel, index);
-    const double u1 = rng.uniform(), u2 = rng.uniform();
+    // The film position from a scrambled Sobol' sequence per pixel and subpixel: stratified over
+    // the pixel, which is what the light's edge (most of the error on smallpt's box) needs.
+    const uint32_t round = samples_per_round(settings_.filter);
+    double u1, u2;
+    sobol_2d(index / round, mix64(mix64(settings_.seed ^ 0xF11Du) ^ pixel) ^ (index % round), u1, u2);
     const double row_from_bottom = settings_.height - 1 - y;
     const uint32_t sub = index % 4;  // smallpt's subpixel (sx, sy) = (sub mod 2, sub / 2)
     const double fx = x + filter_offset(settings_.filter, sub & 1, u1);
