@@ -16,9 +16,10 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-MODES = ["glint", "no-nee", "no-bvh", "smallpt"]
+MODES = ["glint", "no-lt", "no-nee", "no-bvh", "smallpt"]
 LABELS = {
-    "glint": "glint (auto accelerator, light sampling + MIS)",
+    "glint": "glint (auto accelerator, light sampling + MIS, light tracing where caustics)",
+    "no-lt": "glint without light tracing",
     "no-nee": "BVH, no light sampling",
     "no-bvh": "light sampling, no BVH",
     "smallpt": "smallpt-equivalent (neither)",

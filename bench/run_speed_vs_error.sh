@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Speed against error for every example scene: an SPP ladder per mode (glint, no-nee, no-bvh,
-# smallpt), RMSE against a reference glint renders itself (kept in bench/out/, not in git),
+# Speed against error for every example scene: an SPP ladder per mode (glint, no-lt, no-nee,
+# no-bvh, smallpt), RMSE against a reference glint renders itself (kept in bench/out/, not in git),
 # then plots and tables into bench/results/ and bench/plots/. Run by hand on an idle machine:
 #   bench/run_speed_vs_error.sh            (about 30 minutes on 2 cores)
 set -euo pipefail

@@ -3,10 +3,12 @@
 // renderer's own error estimate. One CSV row per rung, for bench/plot_speed_vs_error.py.
 //
 // Modes switch the techniques one at a time, so each one's gain shows:
-//   glint        the scene as written (BVH, light sampling with MIS)
-//   no-nee       BVH, no light sampling
-//   no-bvh       light sampling, every primitive tested
-//   smallpt      neither: smallpt's estimator and its brute-force intersection
+//   glint        the scene as written (auto: BVH, light sampling with MIS, light tracing of
+//                caustics where the scene has them)
+//   no-lt        glint without light tracing
+//   no-nee       BVH, no light sampling, no light tracing
+//   no-bvh       light sampling and light tracing, every primitive tested
+//   smallpt      none: smallpt's estimator and its brute-force intersection
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -25,7 +27,7 @@ namespace fs = std::filesystem;
 namespace {
 
 struct Options {
-    std::string scene, out, modes = "glint,no-nee,no-bvh,smallpt";
+    std::string scene, out, modes = "glint,no-lt,no-nee,no-bvh,smallpt";
     int width = 256, height = 192;
     unsigned threads = 2;
     uint32_t reference_spp = 4096, max_spp = 1024;
@@ -37,6 +39,7 @@ LoadedScene load_mode(const Options& o, const std::string& mode) {
     if (!scene.contains("integrator")) scene["integrator"] = nlohmann::json::object();
     nlohmann::json& integrator = scene["integrator"];
     if (mode == "no-nee" || mode == "smallpt") integrator["light_sampling"] = false;
+    if (mode == "no-lt" || mode == "no-nee" || mode == "smallpt") integrator["light_tracing"] = "off";
     if (mode == "no-bvh" || mode == "smallpt") integrator["accelerator"] = "list";
     LoadedScene loaded = parse_scene(scene.dump(), fs::path(o.scene).parent_path());
     loaded.settings.width = o.width;
@@ -87,7 +90,7 @@ int main(int argc, char** argv) {
     CLI::App app{"Speed against error along an SPP ladder (CSV on stdout)"};
     app.add_option("scene", o.scene, "Scene JSON")->required();
     app.add_option("--out", o.out, "Folder for the reference image")->required();
-    app.add_option("--modes", o.modes, "Comma-separated: glint, no-nee, no-bvh, smallpt");
+    app.add_option("--modes", o.modes, "Comma-separated: glint, no-lt, no-nee, no-bvh, smallpt");
     app.add_option("--width", o.width);
     app.add_option("--height", o.height);
     app.add_option("--threads", o.threads);

@@ -28,4 +28,22 @@ Ray Camera::generate(double fx, double fy, double u1, double u2) const {
     return Ray{eye + dir * settings_.near, dir};
 }
 
+bool Camera::project(const Vec3& p, Projection& out) const {
+    const Vec3 v = p - settings_.position;
+    out.distance = length(v);
+    if (!(out.distance > settings_.near)) return false;
+    const Vec3 d = v / out.distance;
+    const double cos_theta = dot(d, settings_.direction);
+    if (!(cos_theta > 0)) return false;
+    // On the plane at unit distance along the view direction, d/cos θ = direction + film offset.
+    const Vec3 film = d / cos_theta - settings_.direction;
+    const double right2 = dot(right_, right_), up2 = dot(up_, up_);
+    out.fx = (dot(film, right_) / right2 + 0.5) * width_;
+    out.fy = (dot(film, up_) / up2 + 0.5) * height_;
+    out.to_eye = -d;
+    const double pixel_area = std::sqrt(right2 * up2) / (double(width_) * height_);
+    out.importance = 1 / (pixel_area * cos_theta * cos_theta * cos_theta);
+    return true;
+}
+
 }  // namespace glint

@@ -26,6 +26,22 @@ public:
     // bottom edge (smallpt's orientation); (u1, u2) pick the point on the lens.
     Ray generate(double fx, double fy, double u1, double u2) const;
 
+    // The inverse, for light tracing with a pinhole: where on the film (pixels, as generate's
+    // fx, fy) the eye sees point p, the unit direction from p to the eye and the distance, and
+    // the importance per unit film area: the solid angle at the eye per pixel² is
+    // pixel_area·cos³θ, so a pixel's measurement ∫ filter·L dω/(pixel_area·cos³θ) weighs
+    // radiance by 1/(pixel_area·cos³θ). False if p is behind the eye or nearer than `near`
+    // (camera rays start there).
+    struct Projection {
+        double fx, fy;
+        Vec3 to_eye;
+        double distance;
+        double importance;
+    };
+    bool project(const Vec3& p, Projection& out) const;
+    bool is_pinhole() const { return !(settings_.aperture > 0); }
+    double near() const { return settings_.near; }
+
 private:
     CameraSettings settings_;
     Vec3 right_, up_;  // scaled so the film spans [-0.5, 0.5] of each at unit distance

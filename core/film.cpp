@@ -1,25 +1,76 @@
 #include "film.h"
 
+#include <atomic>
+
 namespace glint {
+namespace {
+
+// value·scale rounded, or false if it does not fit in an int64 (or is not finite).
+bool to_fixed(double value, double scale, int64_t& out) {
+    const double scaled = std::nearbyint(value * scale);
+    if (!(std::fabs(scaled) < 0x1p62)) return false;
+    out = static_cast<int64_t>(scaled);
+    return true;
+}
+
+}  // namespace
+
+void Film::splat(int x, int y, const Rgb& value) {
+    PixelSums& px = pixels_[size_t(y) * width_ + x];
+    std::array<int64_t, 3> v, v2;
+    for (int c = 0; c < 3; ++c)
+        if (!to_fixed(value[c], kSplatScale, v[c]) || !to_fixed(value[c] * value[c], kSplatSqScale, v2[c])) {
+            std::atomic_ref<uint64_t>(px.splats_dropped).fetch_add(1, std::memory_order_relaxed);
+            return;
+        }
+    for (int c = 0; c < 3; ++c) {
+        std::atomic_ref<int64_t>(px.splat[c]).fetch_add(v[c], std::memory_order_relaxed);
+        std::atomic_ref<int64_t>(px.splat_sq[c]).fetch_add(v2[c], std::memory_order_relaxed);
+    }
+}
+
+double Film::samples_per_pixel() const {
+    uint64_t samples = 0;
+    for (const PixelSums& px : pixels_) samples += px.count + px.dropped;
+    return double(samples) / double(pixels_.size());
+}
+
+Rgb Film::splat_mean(const PixelSums& px, double n) const {
+    if (px.splat == std::array<int64_t, 3>{}) return Rgb{0};
+    return Rgb{double(px.splat[0]), double(px.splat[1]), double(px.splat[2])} / (kSplatScale * n);
+}
+
+// Each of the N = pixels·n light paths contributes X to this pixel (mostly 0), and the pixel's
+// light-traced part is ΣX/N, with variance (ΣX²/N - mean²)/N. The sums hold X/pixels.
+double Film::splat_variance(const PixelSums& px, int c, double n) const {
+    if (px.splat_sq[c] == 0) return 0;
+    const double pixels = double(pixels_.size());
+    const double mean = double(px.splat[c]) / (kSplatScale * n);
+    const double mean_sq = pixels * double(px.splat_sq[c]) / (kSplatSqScale * n);
+    return std::max(0.0, mean_sq - mean * mean) / (pixels * n);
+}
 
 Image Film::mean() const {
     Image image(width_, height_);
+    const double n = samples_per_pixel();
     for (int y = 0; y < height_; ++y)
         for (int x = 0; x < width_; ++x) {
             const PixelSums& px = pixel(x, y);
-            if (px.count > 0) image.set(x, y, px.sum / double(px.count));
+            const Rgb camera = px.count > 0 ? px.sum / double(px.count) : Rgb{0};
+            image.set(x, y, camera + splat_mean(px, n));
         }
     return image;
 }
 
 double Film::error_estimate() const {
     double total = 0;
+    const double spp = samples_per_pixel();
     for (const PixelSums& px : pixels_) {
         if (px.count < 2) return kInfinity;  // no variance without two samples
         const double n = double(px.count);
         for (int c = 0; c < 3; ++c) {
             const double variance = std::max(0.0, (px.sum_sq[c] - px.sum[c] * px.sum[c] / n) / (n - 1));
-            total += variance / n;
+            total += variance / n + splat_variance(px, c, spp);
         }
     }
     return std::sqrt(total / (3.0 * double(pixels_.size())));
@@ -33,12 +84,17 @@ void Film::merge(const Film& other) {
         px.sum_sq += o.sum_sq;
         px.count += o.count;
         px.dropped += o.dropped;
+        for (int c = 0; c < 3; ++c) {
+            px.splat[c] += o.splat[c];
+            px.splat_sq[c] += o.splat_sq[c];
+        }
+        px.splats_dropped += o.splats_dropped;
     }
 }
 
 uint64_t Film::dropped() const {
     uint64_t total = 0;
-    for (const PixelSums& px : pixels_) total += px.dropped;
+    for (const PixelSums& px : pixels_) total += px.dropped + px.splats_dropped;
     return total;
 }
 

@@ -1,7 +1,13 @@
 // Per-pixel accumulation: the sum and the sum of squares of the sample values and their count,
-// so the mean image and an estimate of its error are available at any moment.
+// so the mean image and an estimate of its error are available at any moment. Light tracing
+// adds splats: contributions a light path makes to pixels other than the one whose sample
+// traced it, from any thread. They are summed in 64-bit fixed point, because integer sums do
+// not depend on the order of the additions: the image stays bit-identical whatever the thread
+// count and however a job is split. Rounding to 2^-32 per splat (splats are in the units of one
+// sample of one pixel) is far below what a float PFM keeps.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -13,6 +19,8 @@ struct PixelSums {
     Rgb sum{0}, sum_sq{0};
     uint64_t count = 0;
     uint64_t dropped = 0;  // samples that came out NaN or infinite and were left out
+    std::array<int64_t, 3> splat{}, splat_sq{};  // fixed point, see Film::kSplatScale
+    uint64_t splats_dropped = 0;                 // non-finite or out of the fixed-point range
 };
 
 class Film {
@@ -34,6 +42,18 @@ public:
         px.sum_sq += value * value;
         ++px.count;
     }
+    // Adds a light-tracing splat to pixel (x, y); thread-safe. `value` is the light path's
+    // contribution divided by the number of pixels, so that the splats of one light path per
+    // camera sample estimate the pixel as sum / samples per pixel.
+    void splat(int x, int y, const Rgb& value);
+    static constexpr double kSplatScale = 0x1p32, kSplatSqScale = 0x1p16;
+    // The light-traced part of a pixel's mean, and its estimated variance, given
+    // samples_per_pixel().
+    Rgb splat_mean(const PixelSums& px, double samples_per_pixel) const;
+    double splat_variance(const PixelSums& px, int c, double samples_per_pixel) const;
+    // Camera samples taken per pixel on average: light paths traced per pixel.
+    double samples_per_pixel() const;
+
     const PixelSums& pixel(int x, int y) const { return pixels_[size_t(y) * width_ + x]; }
     std::vector<PixelSums>& pixels() { return pixels_; }
     const std::vector<PixelSums>& pixels() const { return pixels_; }

@@ -1,6 +1,7 @@
 // Unidirectional path tracing: cosine-sampled diffuse bounces, next-event estimation at
 // diffuse surfaces combined with BSDF sampling by the power heuristic, smallpt's mirror and
-// glass, Russian roulette on the path throughput and a hard depth cap.
+// glass, Russian roulette on the path throughput and a hard depth cap. When the scene has light
+// tracing, the caustic paths it covers (camera → diffuse → specular+ → light) are left to it.
 #pragma once
 
 #include "rng.h"

@@ -17,7 +17,18 @@ LightSet::LightSet(const Geometry& geometry, const std::vector<Material>& materi
                                                      : geometry.triangle(prim).area();
         if (!(area > 0)) continue;
         light_of_prim_[prim] = static_cast<uint32_t>(lights_.size());
-        lights_.push_back({prim, m.emission});
+        Light light{prim, m.emission};
+        light.occluders_begin = light.occluders_end = static_cast<uint32_t>(occluders_.size());
+        for (uint32_t o = 0; geometry.is_sphere(prim) && o < geometry.sphere_count(); ++o) {
+            if (o == prim || materials[material_of_prim[o]].type == MaterialType::glass) continue;
+            Occluder occ{o, {}, {}};
+            if (SphereCap::beside(geometry.sphere(prim), geometry.sphere(o), true, occ.inside) &&
+                SphereCap::beside(geometry.sphere(prim), geometry.sphere(o), false, occ.outside)) {
+                occluders_.push_back(occ);
+                ++light.occluders_end;
+            }
+        }
+        lights_.push_back(light);
         power.push_back(area * std::max(luminance(m.emission), 1e-300));
     }
     double total = 0;
@@ -38,6 +49,30 @@ bool LightSet::sees_as_cone(const Vec3& p, uint32_t self, uint32_t prim) const {
     return length(p - s.centre) > s.radius;
 }
 
+bool LightSet::visible_cap(const Vec3& p, uint32_t self, const Vec3& facing, const Light& light,
+                           SphereCap& cap) const {
+    const Sphere& s = geometry_->sphere(light.prim);
+    double best = 1 - s.radius / length(p - s.centre);  // the horizon
+    bool found = false;
+    for (uint32_t i = light.occluders_begin; i < light.occluders_end; ++i) {
+        const Occluder& occ = occluders_[i];
+        const Sphere& o = geometry_->sphere(occ.prim);
+        bool inside = length(p - o.centre) < o.radius;
+        if (occ.prim == self) {
+            // p on its surface: rounding cannot tell the side, the side p looks from can.
+            if (is_black(facing)) continue;
+            inside = dot(facing, o.centre - p) > 0;
+        }
+        const SphereCap& side = inside ? occ.inside : occ.outside;
+        if (side.one_minus_cos < best) {
+            best = side.one_minus_cos;
+            cap = side;
+            found = true;
+        }
+    }
+    return found;
+}
+
 double LightSet::area_pdf_to_solid_angle(const Vec3& p, const Vec3& q, const Vec3& nq, double area) {
     const Vec3 to = q - p;
     const double dist2 = dot(to, to);
@@ -46,8 +81,8 @@ double LightSet::area_pdf_to_solid_angle(const Vec3& p, const Vec3& q, const Vec
     return dist2 / (cos_light * area);
 }
 
-bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, double u2,
-                      LightSample& out) const {
+bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, double u2, LightSample& out,
+                      const Vec3& facing) const {
     if (lights_.empty()) return false;
     const size_t index = std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u_pick) - cdf_.begin(),
                                           lights_.size() - 1);
@@ -55,7 +90,16 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, do
     out.prim = light.prim;
     out.emission = light.emission;
     double pdf;
-    if (sees_as_cone(p, self, light.prim)) {
+    SphereCap cap;
+    if (sees_as_cone(p, self, light.prim) && visible_cap(p, self, facing, light, cap)) {
+        const Sphere& s = geometry_->sphere(light.prim);
+        const Vec3 n = cap.sample(u1, u2);
+        const Vec3 q = s.centre + n * s.radius;
+        if (!(dot(n, p - q) > 0)) return false;  // on the far side: the light hides it
+        pdf = area_pdf_to_solid_angle(p, q, n, cap.area(s));
+        out.distance = length(q - p);
+        out.wi = (q - p) / out.distance;
+    } else if (sees_as_cone(p, self, light.prim)) {
         const Sphere& s = geometry_->sphere(light.prim);
         const Vec3 axis = s.centre - p;
         const double dc = length(axis);
@@ -89,11 +133,16 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, do
     return out.pdf > 0 && std::isfinite(out.pdf) && out.distance > 0;
 }
 
-double LightSet::pdf(const Vec3& p, uint32_t self, const SurfaceInteraction& hit) const {
+double LightSet::pdf(const Vec3& p, uint32_t self, const SurfaceInteraction& hit, const Vec3& facing) const {
     const uint32_t index = light_of_prim_[hit.prim];
     if (index == kNoLight) return 0;
     double pdf;
-    if (sees_as_cone(p, self, hit.prim)) {
+    SphereCap cap;
+    if (sees_as_cone(p, self, hit.prim) && visible_cap(p, self, facing, lights_[index], cap)) {
+        const Sphere& s = geometry_->sphere(hit.prim);
+        if (!cap.contains(s, hit.p) || !(dot(hit.n, p - hit.p) > 0)) return 0;
+        pdf = area_pdf_to_solid_angle(p, hit.p, hit.n, cap.area(s));
+    } else if (sees_as_cone(p, self, hit.prim)) {
         const Sphere& s = geometry_->sphere(hit.prim);
         pdf = Cone::subtended(s.radius, length(s.centre - p)).pdf();
     } else if (geometry_->is_sphere(hit.prim)) {

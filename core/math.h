@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -68,8 +69,16 @@ constexpr double gamma(int n) {
     return (n * eps) / (1 - n * eps);
 }
 
-inline double next_up(double v) { return std::nextafter(v, kInfinity); }
-inline double next_down(double v) { return std::nextafter(v, -kInfinity); }
+// The neighbouring doubles, by stepping the bit pattern (as pbrt-v4's NextFloatUp): inline and
+// branch-light, where std::nextafter is a libm call (5% of a Cornell render's instructions).
+inline double next_up(double v) {
+    if (!(v < kInfinity)) return v;  // +∞ and NaN
+    if (v == 0) v = 0.0;  // -0 steps up like +0
+    uint64_t bits = std::bit_cast<uint64_t>(v);
+    bits = v >= 0 ? bits + 1 : bits - 1;
+    return std::bit_cast<double>(bits);
+}
+inline double next_down(double v) { return -next_up(-v); }
 
 // sqrt that treats tiny negative rounding results as 0 instead of returning NaN.
 inline double safe_sqrt(double v) { return std::sqrt(std::max(0.0, v)); }

@@ -12,8 +12,8 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "partial files are little-endian");
 constexpr char kMagic[8] = {'G', 'L', 'N', 'T', 'P', 'A', 'R', 'T'};
-constexpr uint32_t kVersion = 1;
-constexpr size_t kHeader = 40, kPixel = 64, kTrailer = 8;
+constexpr uint32_t kVersion = 2;
+constexpr size_t kHeader = 40, kPixel = 120, kTrailer = 8;
 
 class Writer {
 public:
@@ -69,6 +69,9 @@ std::vector<uint8_t> encode_partial(const Partial& p) {
         for (int c = 0; c < 3; ++c) w.put(px.sum_sq[c]);
         w.put(px.count);
         w.put(px.dropped);
+        for (int c = 0; c < 3; ++c) w.put(px.splat[size_t(c)]);
+        for (int c = 0; c < 3; ++c) w.put(px.splat_sq[size_t(c)]);
+        w.put(px.splats_dropped);
     }
     w.put(checksum(w.bytes.data(), w.bytes.size()));
     return std::move(w.bytes);
@@ -106,6 +109,9 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
         for (int c = 0; c < 3; ++c) px.sum_sq[c] = r.get<double>();
         px.count = r.get<uint64_t>();
         px.dropped = r.get<uint64_t>();
+        for (int c = 0; c < 3; ++c) px.splat[size_t(c)] = r.get<int64_t>();
+        for (int c = 0; c < 3; ++c) px.splat_sq[size_t(c)] = r.get<int64_t>();
+        px.splats_dropped = r.get<uint64_t>();
     }
     return p;
 }

@@ -1,7 +1,7 @@
 // Partial renders: the per-pixel sums of samples [first, end) of a job, written by
 // `glint render --samples A:B --partial FILE` and combined by `glint merge`.
 //
-// Format (version 1, little-endian, no padding):
+// Format (version 2, little-endian, no padding):
 //   offset  size  field
 //   0       8     magic "GLNTPART"
 //   8       4     uint32 version = 1
@@ -11,8 +11,10 @@
 //   24      4     uint32 end sample (exclusive)
 //   28      4     uint32 PNG encoding (0 gamma 2.2, 1 sRGB)
 //   32      8     uint64 fingerprint of scene and settings (core/fingerprint.h)
-//   40      64·W·H per pixel, rows top to bottom: float64 sum r, g, b; float64 sum of squares
-//                 r, g, b; uint64 sample count; uint64 dropped (non-finite) samples
+//   40      120·W·H per pixel, rows top to bottom: float64 sum r, g, b; float64 sum of squares
+//                 r, g, b; uint64 sample count; uint64 dropped (non-finite) samples; int64
+//                 light-tracing splat sums r, g, b and sums of squares r, g, b (fixed point,
+//                 see film.h); uint64 dropped splats
 //   end-8   8     uint64 FNV-1a of every byte before it
 #pragma once
 

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "sampling.h"
+#include "sobol.h"
 
 namespace glint {
 
@@ -23,6 +24,7 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
       camera_(scene_->camera(), settings.width, settings.height),
       tracer_(*scene_),
       film_(settings.width, settings.height),
+      light_tracer_(*scene_, camera_, settings.filter, film_),
       tiles_x_((settings.width + kTileSize - 1) / kTileSize),
       tiles_y_((settings.height + kTileSize - 1) / kTileSize) {
     const uint32_t round = samples_per_round(settings_.filter);
@@ -32,19 +34,23 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
 }
 
 Rgb RenderJob::sample(int x, int y, uint32_t index) const {
-    Rng rng(settings_.seed, uint64_t(y) * settings_.width + x, index);
-    const double u1 = rng.uniform(), u2 = rng.uniform();
+    const uint64_t pixel = uint64_t(y) * settings_.width + x;
+    Rng rng(settings_.seed, pixel, index);
+    // The film position from a scrambled Sobol' sequence per pixel and subpixel: stratified over
+    // the pixel, which is what the light's edge (most of the error on smallpt's box) needs.
+    const uint32_t round = samples_per_round(settings_.filter);
+    double u1, u2;
+    sobol_2d(index / round, mix64(mix64(settings_.seed ^ 0xF11Du) ^ pixel) ^ (index % round), u1, u2);
     const double row_from_bottom = settings_.height - 1 - y;
-    double fx, fy;
-    if (settings_.filter == Filter::tent) {
-        const uint32_t sub = index % 4;  // smallpt's subpixel (sx, sy) = (sub mod 2, sub / 2)
-        fx = x + ((sub & 1) + 0.5 + sample_tent(u1)) / 2;
-        fy = row_from_bottom + ((sub >> 1) + 0.5 + sample_tent(u2)) / 2;
-    } else {
-        fx = x + u1;
-        fy = row_from_bottom + u2;
-    }
+    const uint32_t sub = index % 4;  // smallpt's subpixel (sx, sy) = (sub mod 2, sub / 2)
+    const double fx = x + filter_offset(settings_.filter, sub & 1, u1);
+    const double fy = row_from_bottom + filter_offset(settings_.filter, sub >> 1, u2);
     const double lens1 = rng.uniform(), lens2 = rng.uniform();
+    if (scene_->light_tracing()) {
+        // One light path per camera sample, on its own stream keyed like the sample's.
+        Rng light_rng(settings_.seed, pixel, uint64_t(index) | (uint64_t(1) << 63));
+        light_tracer_.trace(light_rng);
+    }
     return tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng);
 }
 

@@ -10,17 +10,13 @@
 
 #include "camera.h"
 #include "film.h"
+#include "filter.h"
 #include "image_io.h"
 #include "integrator.h"
+#include "light_tracer.h"
 #include "thread_pool.h"
 
 namespace glint {
-
-// tent: smallpt's 2×2 subpixels with tent-distributed offsets; sample s goes to subpixel s mod 4,
-// so sample counts are whole multiples of 4. box: uniform over the pixel.
-enum class Filter { tent, box };
-
-inline uint32_t samples_per_round(Filter f) { return f == Filter::tent ? 4 : 1; }
 
 struct RenderSettings {
     int width = 1024, height = 768;
@@ -83,6 +79,7 @@ private:
     Camera camera_;
     PathTracer tracer_;
     Film film_;
+    LightTracer light_tracer_;
     int tiles_x_, tiles_y_;
     uint32_t spp_done_ = 0;
     uint32_t spp_at_start_ = 0;  // samples resumed from, left out of the rate

@@ -5,17 +5,23 @@
 #include <vector>
 
 #include "camera.h"
+#include "caustic_emitter.h"
 #include "geometry.h"
 #include "lights.h"
 #include "material.h"
 
 namespace glint {
 
+// Light tracing of caustics (see light_tracer.h). automatic: on when the scene has what it
+// needs and pays for: a pinhole camera, a sphere light and a mirror or glass sphere it can reach.
+enum class LightTracing { automatic, on, off };
+
 struct IntegratorSettings {
     bool light_sampling = true;  // next-event estimation with MIS; off gives smallpt's estimator
     int max_depth = 1024;        // surface hits per path, a hard cap; RR ends paths long before
     int rr_depth = 5;            // Russian roulette after this many hits, as smallpt
     Accelerator accelerator = Accelerator::automatic;
+    LightTracing light_tracing = LightTracing::automatic;
 };
 
 // Immutable once built (jobs share it across threads). Not copyable: the lights refer to the
@@ -32,6 +38,9 @@ public:
     const IntegratorSettings& integrator() const { return integrator_; }
     const Geometry& geometry() const { return geometry_; }
     const LightSet& lights() const { return lights_; }
+    // Whether light tracing takes the caustic paths, and where its paths start (empty if not).
+    bool light_tracing() const { return !caustic_emitter_.empty(); }
+    const CausticEmitter& caustic_emitter() const { return caustic_emitter_; }
     const Material& material(uint32_t prim) const { return materials_[material_of_prim_[prim]]; }
 
 private:
@@ -42,6 +51,7 @@ private:
     std::vector<Material> materials_;
     std::vector<uint32_t> material_of_prim_;
     LightSet lights_;
+    CausticEmitter caustic_emitter_;
 };
 
 }  // namespace glint

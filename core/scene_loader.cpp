@@ -115,6 +115,8 @@ public:
         if (root.has("film")) loaded.settings = parse_film(root["film"], background);
         check_settings(loaded.settings, limits_);
         const IntegratorSettings integrator = root.has("integrator") ? parse_integrator(root["integrator"]) : IntegratorSettings{};
+        if (integrator.light_tracing == LightTracing::on && camera.aperture > 0)
+            root["integrator"]["light_tracing"].fail("\"on\" needs a pinhole camera (camera.aperture 0)");
         if (root.has("objects")) parse_objects(root["objects"]);
         loaded.scene = std::make_shared<const Scene>(camera, background, integrator, std::move(spheres_),
                                                      std::move(triangles_), std::move(materials_),
@@ -164,7 +166,7 @@ private:
     }
 
     static IntegratorSettings parse_integrator(const At& at) {
-        at.expect_object({"light_sampling", "max_depth", "rr_depth", "accelerator"});
+        at.expect_object({"light_sampling", "light_tracing", "max_depth", "rr_depth", "accelerator"});
         IntegratorSettings s;
         if (at.has("light_sampling")) s.light_sampling = at["light_sampling"].boolean();
         if (at.has("max_depth")) s.max_depth = int(at["max_depth"].integer(1, 100000));
@@ -172,6 +174,10 @@ private:
         if (at.has("accelerator")) {
             const std::string a = at["accelerator"].choice({"auto", "bvh", "list"});
             s.accelerator = a == "auto" ? Accelerator::automatic : a == "bvh" ? Accelerator::bvh : Accelerator::list;
+        }
+        if (at.has("light_tracing")) {
+            const std::string t = at["light_tracing"].choice({"auto", "on", "off"});
+            s.light_tracing = t == "auto" ? LightTracing::automatic : t == "on" ? LightTracing::on : LightTracing::off;
         }
         return s;
     }

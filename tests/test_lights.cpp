@@ -121,3 +121,61 @@ TEST(Lights, PickingFollowsPower) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// smallpt's light: a radius-600 sphere poking 0.27 through a radius-1e5 ceiling sphere.
+struct LightThroughCeiling {
+    Geometry geometry{{Sphere{{50, 681.33, 81.6}, 600}, Sphere{{50, -99918.4, 81.6}, 1e5}}, {}};
+    std::vector<Material> materials{Material{MaterialType::diffuse, Rgb{0}, 1.5, Rgb{12}},
+                                    Material{MaterialType::diffuse, Rgb{0.75}, 1.5, Rgb{0}}};
+    std::vector<uint32_t> material_of_prim{0, 1};
+    LightSet lights{geometry, materials, material_of_prim};
+};
+
+TEST(Lights, LightCutByAnOpaqueSphereIsSampledOnTheVisibleCap) {
+    const LightThroughCeiling scene;
+    const Vec3 p{50, 0, 81.6}, n{0, 1, 0};
+    Rng rng(25, 0, 0);
+    const int count = 20000;
+    double sum = 0, sum_sq = 0;
+    int sampled = 0;
+    for (int i = 0; i < count; ++i) {
+        LightSample ls;
+        double value = 0;
+        if (scene.lights.sample(p, kNoPrimitive, rng.uniform(), rng.uniform(), rng.uniform(), ls)) {
+            Ray shadow{p, ls.wi, 0, ls.distance};
+            if (!scene.geometry.occluded(shadow, kNoPrimitive, ls.prim)) {
+                ++sampled;
+                value = ls.emission.x * std::max(0.0, dot(ls.wi, n)) / ls.pdf;
+                // The density MIS uses for the same point agrees.
+                Hit hit;
+                Ray ray{p, ls.wi, 0, ls.distance * (1 + 1e-9)};
+                EXPECT_TRUE(scene.geometry.intersect(ray, kNoPrimitive, hit) && hit.prim == 0);
+                EXPECT_NEAR(scene.lights.pdf(p, kNoPrimitive, scene.geometry.interaction(ray, hit)), ls.pdf, 1e-6 * ls.pdf);
+            }
+        }
+        sum += value;
+        sum_sq += value * value;
+    }
+    // Nearly every sample lands on the visible disc (the whole cone would find it ~5% of the time).
+    EXPECT_GT(sampled, count * 9 / 10);
+    const double mean = sum / count, sigma = std::sqrt((sum_sq / count - mean * mean) / count);
+    // Brute force: cosine-weighted rays from p, π·L times the fraction that reach the light.
+    Rng brute_rng(26, 0, 0);
+    const Frame frame = Frame::around(n);
+    int hits = 0;
+    const int brute_count = 400000;
+    for (int i = 0; i < brute_count; ++i) {
+        Hit hit;
+        const Ray ray{p, frame.to_world(sample_cosine_hemisphere(brute_rng.uniform(), brute_rng.uniform()))};
+        hits += scene.geometry.intersect(ray, kNoPrimitive, hit) && hit.prim == 0;
+    }
+    const double f = double(hits) / brute_count, brute = 12 * kPi * f,
+                 brute_sigma = 12 * kPi * std::sqrt(f * (1 - f) / brute_count);
+    EXPECT_NEAR(mean, brute, 4 * std::hypot(sigma, brute_sigma));
+}
+
+}  // namespace
+}  // namespace glint
