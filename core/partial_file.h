@@ -4,7 +4,7 @@
 // Format (version 2, little-endian, no padding):
 //   offset  size  field
 //   0       8     magic "GLNTPART"
-//   8       4     uint32 version = 1
+//   8       4     uint32 version = 2
 //   12      4     uint32 width
 //   16      4     uint32 height
 //   20      4     uint32 first sample (inclusive)
