@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds glint's image with podman (no Docker engine or registry needed) and checks it: renders
 # a scene through a bind mount as the image's non-root user, splits a job over two containers
-# and merges it, and answers /health from `serve`. Run as root from anywhere; idempotent (the
+# and merges it, and answers /health from `serve`, which beyond loopback demands a bearer token
+# for job routes and refuses to start without one. Run as root from anywhere; idempotent (the
 # base image and build cache stay in podman's store). First run ~3 minutes on 2 cores.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -73,11 +74,19 @@ podman run --rm -v "$out:/work" "$image" merge /work/merged.png /work/part0 /wor
 check "a job split over two containers merges into the whole render" cmp -s "$out/merged.png" "$out/out.png"
 
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
-container=$(podman run -d --rm --network=host "$image" serve --port "$port")
+# Inside the image serve listens on 0.0.0.0 (GLINT_HOST), so it must refuse to start without a token.
+refused=0
+refusal=$(timeout 30 podman run --rm --network=host "$image" serve --port "$port" 2>&1) || refused=$?
+check "serve refuses to listen beyond loopback without a token" test "$refused" -eq 1
+check "and says why" grep -q "without a token" <<< "$refusal"
+token=$(head -c 16 /dev/urandom | od -An -tx1 | tr -d ' \n')
+container=$(podman run -d --rm --network=host -e GLINT_TOKEN="$token" "$image" serve --port "$port")
 ok=1
 for _ in $(seq 50); do curl -fs "127.0.0.1:$port/health" >/dev/null && { ok=0; break; }; sleep 0.2; done
 check "serve answers /health from inside the container" test $ok -eq 0
 check "the image serves the page" bash -c "curl -fs 127.0.0.1:$port/ | grep -q '<title>glint</title>'"
+check "job routes need the token" test "$(curl -s -o /dev/null -w '%{http_code}' "127.0.0.1:$port/jobs")" = 401
+check "and answer with it" test "$(curl -s -o /dev/null -w '%{http_code}' -H "Authorization: Bearer $token" "127.0.0.1:$port/jobs")" = 200
 podman stop -t 10 "$container" >/dev/null
 echo "image: $passes passed, $failures failed"
 exit $((failures > 0))
