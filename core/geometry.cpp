@@ -5,27 +5,29 @@ namespace glint {
 Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles, Accelerator accelerator)
     : spheres_(std::move(spheres)), accelerator_(accelerator) {
     std::vector<PackedTriangle> packed;
+    std::vector<Bounds3> triangle_bounds;
     packed.reserve(triangles.size());
-    for (const Triangle& t : triangles) packed.push_back(PackedTriangle::pack(t));
-    for (const PackedTriangle& t : packed) degenerate_ += !(t.unpack().area() > 0);
+    triangle_bounds.reserve(triangles.size());
+    for (const Triangle& input : triangles) {
+        packed.push_back(PackedTriangle::pack(input));
+        const Triangle t = packed.back().unpack();
+        // A zero-area triangle can never be hit (its determinant is 0): leave it out of the tree.
+        const bool degenerate = !(t.area() > 0);
+        degenerate_ += degenerate;
+        triangle_bounds.push_back(degenerate ? Bounds3{} : t.bounds());
+    }
     if (accelerator_ == Accelerator::automatic)
         accelerator_ = spheres_.size() + packed.size() <= kListMaxPrimitives ? Accelerator::list : Accelerator::bvh;
     if (accelerator_ != Accelerator::bvh) {
         triangles_ = std::move(packed);
         return;
     }
-    std::vector<Bounds3> bounds;
-    bounds.reserve(spheres_.size());
-    for (const Sphere& s : spheres_) bounds.push_back(s.bounds());
-    sphere_bvh_ = Bvh::build(bounds);
+    std::vector<Bounds3> sphere_bounds;
+    sphere_bounds.reserve(spheres_.size());
+    for (const Sphere& s : spheres_) sphere_bounds.push_back(s.bounds());
+    sphere_bvh_ = Bvh::build(sphere_bounds);
 
-    bounds.clear();
-    for (const PackedTriangle& p : packed) {
-        const Triangle t = p.unpack();
-        // A zero-area triangle can never be hit (its determinant is 0): leave it out.
-        bounds.push_back(t.area() > 0 ? t.bounds() : Bounds3{});
-    }
-    triangle_bvh_ = Bvh::build(bounds);
+    triangle_bvh_ = Bvh::build(triangle_bounds);
     triangle_at_ = triangle_bvh_.order();
     position_of_.resize(packed.size());
     triangles_.reserve(packed.size());

@@ -245,10 +245,18 @@ void flip_a_byte(const fs::path& file) {
     f.put(c);
 }
 
+// The bytes the store has committed. A checkpoint being written (".tmp", renamed over the old
+// one a moment later: the running job here checkpoints after every pass) is not part of the
+// store yet, and it may vanish while it is counted.
 uint64_t bytes_in(const fs::path& folder) {
     uint64_t total = 0;
-    for (const auto& entry : fs::recursive_directory_iterator(folder))
-        if (entry.is_regular_file()) total += entry.file_size();
+    std::error_code error;
+    for (fs::recursive_directory_iterator it(folder, error), end; !error && it != end; it.increment(error)) {
+        std::error_code gone;
+        if (it->path().extension() == ".tmp" || !it->is_regular_file(gone)) continue;
+        const uintmax_t size = it->file_size(gone);
+        if (!gone) total += size;
+    }
     return total;
 }
 
