@@ -46,4 +46,10 @@ bool Camera::project(const Vec3& p, Projection& out) const {
     return true;
 }
 
+double Camera::area_density(const Vec3& p, const Vec3& n) const {
+    Projection proj;
+    if (!project(p, proj)) return 0;
+    return proj.importance / (double(width_) * height_) * std::fabs(dot(n, proj.to_eye)) / (proj.distance * proj.distance);
+}
+
 }  // namespace glint

@@ -39,6 +39,10 @@ public:
         double importance;
     };
     bool project(const Vec3& p, Projection& out) const;
+    // The density, per unit area of a surface through p with unit normal n, with which a
+    // camera ray through a uniformly random point of the film meets p (pinhole): the importance
+    // shared by all the pixels times |cos|/distance². 0 where the camera cannot see p.
+    double area_density(const Vec3& p, const Vec3& n) const;
     bool is_pinhole() const { return !(settings_.aperture > 0); }
     double near() const { return settings_.near; }
 

@@ -68,11 +68,13 @@ bool CausticEmitter::covers(uint32_t light, const Vec3& x, uint32_t target) cons
     return pair != nullptr && pair->cap.contains(geometry_->sphere(light), x);
 }
 
-double CausticEmitter::pdf(size_t chosen, const Vec3& x, const Vec3& d) const {
+double CausticEmitter::pdf(uint32_t light, const Vec3& x, const Vec3& d) const { return pdf(light, kNone, x, d); }
+
+double CausticEmitter::pdf(uint32_t light, size_t chosen, const Vec3& x, const Vec3& d) const {
     double total = 0;
     for (size_t i = 0; i < pairs_.size(); ++i) {
         const Pair& p = pairs_[i];
-        if (p.light != pairs_[chosen].light) continue;
+        if (p.light != light) continue;
         const Sphere &ls = geometry_->sphere(p.light), &ts = geometry_->sphere(p.target);
         const Vec3 to = ts.centre - x;
         const double dist = length(to);
@@ -99,10 +101,11 @@ bool CausticEmitter::sample(double u_pick, double u1, double u2, double u3, doub
     const Vec3 d = normalize(Frame::around(to / dist).to_world(Cone::subtended(ts.radius, dist).sample(u3, u4, sin2)));
     const double cos_out = dot(w, d);
     if (!(cos_out > 0)) return false;  // into the light itself
-    const double pdf_xd = pdf(chosen, x, d);
+    const double pdf_xd = pdf(pair.light, chosen, x, d);
     if (!(pdf_xd > 0) || !std::isfinite(pdf_xd)) return false;
     out.ray = Ray{x, d};
-    out.weight = pair.emission * (cos_out / pdf_xd);
+    out.emitted_ratio = cos_out / pdf_xd;
+    out.weight = pair.emission * out.emitted_ratio;
     out.light = pair.light;
     return true;
 }

@@ -23,6 +23,7 @@ namespace glint {
 struct EmittedRay {
     Ray ray;          // leaving the light's surface
     Rgb weight;       // emitted radiance · cos / (pdf of the point and direction)
+    double emitted_ratio;  // cos / (pdf of the point and direction)
     uint32_t light;   // primitive
 };
 
@@ -40,6 +41,9 @@ public:
     // tracing covers a path whose last two vertices are x and `target`.
     bool covers(uint32_t light, const Vec3& x, uint32_t target) const;
     bool is_target(uint32_t light, uint32_t prim) const { return find(light, prim) != nullptr; }
+    // Density (by area on the light, by solid angle at x) of emitting from point x of `light`
+    // along d, as sample() would.
+    double pdf(uint32_t light, const Vec3& x, const Vec3& d) const;
 
 private:
     struct Pair {
@@ -51,8 +55,10 @@ private:
                        const std::vector<Material>& materials, const std::vector<uint32_t>& material_of_prim,
                        uint32_t light_prim, uint32_t target_prim);
     const Pair* find(uint32_t light, uint32_t target) const;
-    // Density of emitting from x along d, summed over the pairs of x's light.
-    double pdf(size_t chosen, const Vec3& x, const Vec3& d) const;
+    // Density of emitting from x along d, summed over the pairs of `light` (`chosen`, if any,
+    // is counted without testing).
+    double pdf(uint32_t light, size_t chosen, const Vec3& x, const Vec3& d) const;
+    static constexpr size_t kNone = ~size_t(0);
 
     const Geometry* geometry_ = nullptr;
     std::vector<Pair> pairs_;    // grouped by light

@@ -18,6 +18,22 @@ Shape extend(Shape shape, bool diffuse) {
     return Shape::other;
 }
 
+// Whether y's own sphere hides x: light reached y from inside the sphere and x is outside it.
+// (Elsewhere a segment from y to a point on the side the light came from stays off y's
+// surface, so the shadow ray may skip y's primitive, as it must: rounding could find y itself.)
+bool hidden_by_own_sphere(const Geometry& geometry, const LightVertex& y, const Vec3& x) {
+    if (!geometry.is_sphere(y.si.prim) || dot(y.d_in, y.si.n) <= 0) return false;
+    const Sphere& s = geometry.sphere(y.si.prim);
+    const Vec3 from_centre = x - s.centre;
+    return dot(from_centre, from_centre) > s.radius * s.radius;
+}
+
+// The two ends' densities of a connection x → y, cos_x·cos_y / (π·|x - y|²) / π: the density
+// with which cosine sampling at x reaches y, over π.
+double connection_density_over_pi(double cos_x, double cos_y, double distance2) {
+    return std::fabs(cos_x * cos_y) / (kPi * kPi * distance2);
+}
+
 }  // namespace
 
 Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, Rng& rng) const {
@@ -34,7 +50,38 @@ Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const 
     return f_cos * ls.emission * (power_heuristic(ls.pdf, bsdf_pdf) / ls.pdf);
 }
 
-Rgb PathTracer::radiance(Ray ray, Rng& rng) const {
+Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Material& m, const LightVertex& y) const {
+    const Vec3 to_y = y.si.p - x.p;
+    const double distance2 = dot(to_y, to_y);
+    if (!(distance2 > 0)) return Rgb{0};
+    const Vec3 w = to_y / std::sqrt(distance2);
+    const double cos_x = dot(w, x.n), cos_y = dot(w, y.si.n);
+    // Reflection only: y must lie on the side x was reached from, x on the side light reached y from.
+    if (cos_x * dot(d, x.n) >= 0 || cos_y * dot(y.d_in, y.si.n) <= 0) return Rgb{0};
+    if (hidden_by_own_sphere(scene_.geometry(), y, x.p)) return Rgb{0};
+    const Vec3 from = offset_ray_origin(x, w), to = offset_ray_origin(y.si, -w);
+    Ray shadow{from, normalize(to - from)};
+    shadow.tmax = length(to - from);
+    if (scene_.geometry().occluded(shadow, x.prim, y.si.prim)) return Rgb{0};
+    const double density_over_pi = connection_density_over_pi(cos_x, cos_y, distance2);
+    // f_x · G · f_y = albedo_x · albedo_y · cos_x·cos_y / (π²·distance²).
+    return m.albedo * y.albedo * y.beta *
+           (density_over_pi * LightTracer::light_side_weight(density_over_pi, y.emitted_ratio));
+}
+
+double PathTracer::bounce_weight(double density_over_pi, const Ray& ray, const SurfaceInteraction& si,
+                                 uint32_t last_specular) const {
+    if (!(density_over_pi > 0)) return 1;
+    const CausticEmitter& emitter = scene_.caustic_emitter();
+    const Vec3 d_out = -ray.d;
+    const double cos_out = dot(d_out, si.n);
+    if (!(cos_out > 0) || !emitter.covers(si.prim, si.p, last_specular)) return 1;
+    const double pdf = emitter.pdf(si.prim, si.p, d_out);
+    if (!(pdf > 0)) return 1;
+    return 1 - LightTracer::light_side_weight(density_over_pi, cos_out / pdf);
+}
+
+Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light) const {
     const IntegratorSettings& settings = scene_.integrator();
     const bool nee = settings.light_sampling && !scene_.lights().empty();
     const bool light_tracing = scene_.light_tracing();
@@ -42,8 +89,13 @@ Rgb PathTracer::radiance(Ray ray, Rng& rng) const {
     Rgb result{0}, throughput{1};
     uint32_t self = kNoPrimitive;
     bool specular = true;  // the camera "samples" its ray like a specular bounce: no MIS
+    bool previous_diffuse = false;
     double bsdf_pdf = 0;
     Vec3 previous, previous_facing;
+    // For the last diffuse vertex, and for the one before it when only specular vertices lie
+    // between: the density (over π) with which its predecessor — the eye or a diffuse vertex —
+    // reaches it, which a light path's vertex there would be weighed against; 0 otherwise.
+    double last_density = 0, before_last_density = 0;
     for (int depth = 0;; ++depth) {
         Hit hit;
         if (!scene_.geometry().intersect(ray, self, hit)) {
@@ -52,17 +104,36 @@ Rgb PathTracer::radiance(Ray ray, Rng& rng) const {
         }
         const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
         const Material& m = scene_.material(hit.prim);
+        const bool diffuse = m.type == MaterialType::diffuse;
         const bool traced_from_light = light_tracing && shape == Shape::caustic &&
                                        scene_.caustic_emitter().covers(hit.prim, si.p, self);
         if (m.is_emissive() && !traced_from_light) {
-            // Emission found by BSDF sampling; where NEE could also have found it, MIS-weight it.
-            const double w = nee && !specular
-                                 ? power_heuristic(bsdf_pdf, scene_.lights().pdf(previous, self, si, previous_facing))
-                                 : 1.0;
+            // Emission found by BSDF sampling; where NEE or a light path could also have
+            // found it, MIS-weight it. After specular vertices that follow the last diffuse
+            // one y, the light path's first diffuse vertex is y itself when y's predecessor
+            // reached it directly, else the diffuse vertex before y.
+            double w = 1;
+            if (nee && !specular)
+                w = power_heuristic(bsdf_pdf, scene_.lights().pdf(previous, self, si, previous_facing));
+            else if (light_tracing && specular)
+                w = bounce_weight(last_density > 0 ? last_density : before_last_density, ray, si, self);
             result += throughput * m.emission * w;
         }
         if (depth + 1 >= settings.max_depth) break;
-        if (nee && m.type == MaterialType::diffuse) result += throughput * direct_light(si, ray.d, m, rng);
+        if (diffuse) {
+            if (nee) result += throughput * direct_light(si, ray.d, m, rng);
+            for (int i = 0; i < light.size; ++i)
+                if (depth + 1 + light.vertices[i].hits <= settings.max_depth)
+                    result += throughput * connect(si, ray.d, m, light.vertices[i]);
+            if (light_tracing) {
+                before_last_density = previous_diffuse || depth == 0 ? 0 : last_density;
+                const Vec3 from_previous = si.p - previous;
+                last_density = depth == 0        ? camera_.area_density(si.p, si.n) / kPi
+                               : previous_diffuse ? connection_density_over_pi(dot(ray.d, previous_facing), dot(ray.d, si.n),
+                                                                               dot(from_previous, from_previous))
+                                                  : 0;
+            }
+        }
 
         const BsdfSample bs = sample_bsdf(m, ray.d, si.n, rng);
         throughput *= bs.weight;
@@ -72,8 +143,9 @@ Rgb PathTracer::radiance(Ray ray, Rng& rng) const {
             if (rng.uniform() >= survive) break;
             throughput *= 1 / survive;
         }
-        shape = extend(shape, m.type == MaterialType::diffuse);
+        shape = extend(shape, diffuse);
         specular = bs.specular;
+        previous_diffuse = diffuse;
         bsdf_pdf = bs.pdf;
         previous = si.p;
         previous_facing = dot(ray.d, si.n) < 0 ? si.n : -si.n;

@@ -22,7 +22,7 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
     : scene_(std::move(scene)),
       settings_(settings),
       camera_(scene_->camera(), settings.width, settings.height),
-      tracer_(*scene_),
+      tracer_(*scene_, camera_),
       film_(settings.width, settings.height),
       light_tracer_(*scene_, camera_, settings.filter, film_),
       tiles_x_((settings.width + kTileSize - 1) / kTileSize),
@@ -46,12 +46,13 @@ Rgb RenderJob::sample(int x, int y, uint32_t index) const {
     const double fx = x + filter_offset(settings_.filter, sub & 1, u1);
     const double fy = row_from_bottom + filter_offset(settings_.filter, sub >> 1, u2);
     const double lens1 = rng.uniform(), lens2 = rng.uniform();
+    LightPath light;
     if (scene_->light_tracing()) {
         // One light path per camera sample, on its own stream keyed like the sample's.
         Rng light_rng(settings_.seed, pixel, uint64_t(index) | (uint64_t(1) << 63));
-        light_tracer_.trace(light_rng);
+        light = light_tracer_.trace(light_rng);
     }
-    return tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng);
+    return tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng, light);
 }
 
 bool RenderJob::should_stop() const { return cancelled_ || Clock::now() >= deadline_; }
