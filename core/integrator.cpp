@@ -34,23 +34,36 @@ double connection_density_over_pi(double cos_x, double cos_y, double distance2) 
     return std::fabs(cos_x * cos_y) / (kPi * kPi * distance2);
 }
 
+// Russian roulette on a contribution before its shadow ray (PathTracer::kShadowRoulette).
+bool survives_roulette(Rgb& value, double threshold, Rng& rng) {
+    const double worth = max_component(value);
+    if (!(worth > 0)) return false;
+    if (worth >= threshold) return true;
+    if (rng.uniform() * threshold >= worth) return false;
+    value *= threshold / worth;
+    return true;
+}
+
 }  // namespace
 
-Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, Rng& rng) const {
+Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, const Rgb& beta,
+                             Rng& rng) const {
     const double u_pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     LightSample ls;
     const Vec3 facing = dot(d, si.n) < 0 ? si.n : -si.n;
     if (!scene_.lights().sample(si.p, si.prim, u_pick, u1, u2, ls, facing)) return Rgb{0};
     double bsdf_pdf;
     const Rgb f_cos = diffuse_f_cos(m, d, si.n, ls.wi, bsdf_pdf);
-    if (is_black(f_cos)) return Rgb{0};
+    Rgb value = beta * f_cos * ls.emission * (power_heuristic(ls.pdf, bsdf_pdf) / ls.pdf);
+    if (!survives_roulette(value, kShadowRoulette, rng)) return Rgb{0};
     Ray shadow = spawn_ray(si, ls.wi);
     shadow.tmax = ls.distance;
     if (scene_.geometry().occluded(shadow, si.prim, ls.prim)) return Rgb{0};
-    return f_cos * ls.emission * (power_heuristic(ls.pdf, bsdf_pdf) / ls.pdf);
+    return value;
 }
 
-Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Material& m, const LightVertex& y) const {
+Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta,
+                        const LightVertex& y, Rng& rng) const {
     const Vec3 to_y = y.si.p - x.p;
     const double distance2 = dot(to_y, to_y);
     if (!(distance2 > 0)) return Rgb{0};
@@ -59,14 +72,16 @@ Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Materi
     // Reflection only: y must lie on the side x was reached from, x on the side light reached y from.
     if (cos_x * dot(d, x.n) >= 0 || cos_y * dot(y.d_in, y.si.n) <= 0) return Rgb{0};
     if (hidden_by_own_sphere(scene_.geometry(), y, x.p)) return Rgb{0};
+    const double density_over_pi = connection_density_over_pi(cos_x, cos_y, distance2);
+    // f_x · G · f_y = albedo_x · albedo_y · cos_x·cos_y / (π²·distance²).
+    Rgb value = beta * m.albedo * y.albedo * y.beta *
+                (density_over_pi * LightTracer::light_side_weight(density_over_pi, y.emitted_ratio));
+    if (!survives_roulette(value, kShadowRoulette, rng)) return Rgb{0};
     const Vec3 from = offset_ray_origin(x, w), to = offset_ray_origin(y.si, -w);
     Ray shadow{from, normalize(to - from)};
     shadow.tmax = length(to - from);
     if (scene_.geometry().occluded(shadow, x.prim, y.si.prim)) return Rgb{0};
-    const double density_over_pi = connection_density_over_pi(cos_x, cos_y, distance2);
-    // f_x · G · f_y = albedo_x · albedo_y · cos_x·cos_y / (π²·distance²).
-    return m.albedo * y.albedo * y.beta *
-           (density_over_pi * LightTracer::light_side_weight(density_over_pi, y.emitted_ratio));
+    return value;
 }
 
 double PathTracer::bounce_weight(double density_over_pi, const Ray& ray, const SurfaceInteraction& si,
@@ -92,10 +107,12 @@ Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light) const {
     bool previous_diffuse = false;
     double bsdf_pdf = 0;
     Vec3 previous, previous_facing;
-    // For the last diffuse vertex, and for the one before it when only specular vertices lie
-    // between: the density (over π) with which its predecessor — the eye or a diffuse vertex —
-    // reaches it, which a light path's vertex there would be weighed against; 0 otherwise.
-    double last_density = 0, before_last_density = 0;
+    // The path's last diffuse vertices as a light path could have made them: v, then specular+
+    // and diffuse vertices alternating, `chain` diffuse vertices in all (0: none, because v's
+    // predecessor is specular), and the density (over π) with which v's predecessor, the eye
+    // or a diffuse vertex, reaches v. A light path's vertex at v is weighed against that.
+    int chain = 0;
+    double chain_density = 0;
     for (int depth = 0;; ++depth) {
         Hit hit;
         if (!scene_.geometry().intersect(ray, self, hit)) {
@@ -109,29 +126,27 @@ Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light) const {
                                        scene_.caustic_emitter().covers(hit.prim, si.p, self);
         if (m.is_emissive() && !traced_from_light) {
             // Emission found by BSDF sampling; where NEE or a light path could also have
-            // found it, MIS-weight it. After specular vertices that follow the last diffuse
-            // one y, the light path's first diffuse vertex is y itself when y's predecessor
-            // reached it directly, else the diffuse vertex before y.
+            // found it, MIS-weight it.
             double w = 1;
             if (nee && !specular)
                 w = power_heuristic(bsdf_pdf, scene_.lights().pdf(previous, self, si, previous_facing));
-            else if (light_tracing && specular)
-                w = bounce_weight(last_density > 0 ? last_density : before_last_density, ray, si, self);
+            else if (light_tracing && specular && chain > 0 && chain <= kLightVertices)
+                w = bounce_weight(chain_density, ray, si, self);
             result += throughput * m.emission * w;
         }
         if (depth + 1 >= settings.max_depth) break;
         if (diffuse) {
-            if (nee) result += throughput * direct_light(si, ray.d, m, rng);
+            if (nee) result += direct_light(si, ray.d, m, throughput, rng);
             for (int i = 0; i < light.size; ++i)
                 if (depth + 1 + light.vertices[i].hits <= settings.max_depth)
-                    result += throughput * connect(si, ray.d, m, light.vertices[i]);
+                    result += connect(si, ray.d, m, throughput, light.vertices[i], rng);
             if (light_tracing) {
-                before_last_density = previous_diffuse || depth == 0 ? 0 : last_density;
                 const Vec3 from_previous = si.p - previous;
-                last_density = depth == 0        ? camera_.area_density(si.p, si.n) / kPi
-                               : previous_diffuse ? connection_density_over_pi(dot(ray.d, previous_facing), dot(ray.d, si.n),
-                                                                               dot(from_previous, from_previous))
-                                                  : 0;
+                if (depth == 0) chain_density = camera_.area_density(si.p, si.n) / kPi;
+                else if (previous_diffuse)
+                    chain_density = connection_density_over_pi(dot(ray.d, previous_facing), dot(ray.d, si.n),
+                                                               dot(from_previous, from_previous));
+                chain = depth == 0 || previous_diffuse ? 1 : chain > 0 ? chain + 1 : 0;
             }
         }
 

@@ -68,7 +68,7 @@ LightPath LightTracer::trace(Rng& rng) const {
     int hits = 1;  // the light is the path's first surface hit; the path tracer caps them at max_depth
     uint32_t self = e.light;
     Ray ray = e.ray;
-    for (uint32_t light = e.light; path.size < 2; light = kNoPrimitive) {
+    for (uint32_t light = e.light; path.size < kLightVertices; light = kNoPrimitive) {
         LightVertex& v = path.vertices[path.size];
         if (!to_diffuse(ray, self, light, throughput, hits, rng, v.si, v.d_in)) break;
         const Material& m = scene_.material(v.si.prim);
@@ -78,9 +78,9 @@ LightPath LightTracer::trace(Rng& rng) const {
         v.hits = hits;
         ++path.size;
         // y's camera-side partner is the eye alone (the path tracer leaves these paths to light
-        // tracing); z's is weighed against the path tracer's.
+        // tracing); the later vertices' are weighed against the path tracer's.
         splat(v, path.size == 1 ? 1 : light_side_weight(camera_.area_density(v.si.p, v.si.n) / kPi, e.emitted_ratio));
-        if (path.size == 2 || hits >= scene_.integrator().max_depth) break;
+        if (path.size == kLightVertices || hits >= scene_.integrator().max_depth) break;
         const BsdfSample bs = sample_bsdf(m, v.d_in, v.si.n, rng);
         throughput *= bs.weight;
         if (is_black(throughput)) break;

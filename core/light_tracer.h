@@ -1,23 +1,29 @@
-// Light tracing of caustic paths: from a light, through one or more specular bounces (the first
-// on a specular sphere the CausticEmitter aims at), to a diffuse surface y; then one cosine
-// bounce from y that meets a specular surface, through specular bounces to a diffuse surface z.
-// Three strategies use these vertices, each the only one or the better one for some paths:
+// Light tracing of caustic paths. A light path leaves a light toward a specular sphere the
+// CausticEmitter aims at, follows specular bounces to a diffuse surface (its vertex y), and
+// from there repeats: one cosine bounce that meets a specular surface, specular bounces, the
+// next diffuse vertex — up to kLightVertices of them, each separated from the last by
+// specular vertices only (a bounce that meets a diffuse surface ends the path: paths through
+// two diffuse vertices in a row are the connections' and the path tracer's). Its strategies:
 // - y is connected to the eye and splatted onto the film with the pixel filter's weight. That
 //   estimates exactly the paths the path tracer leaves out (camera → y → specular+ → light, see
 //   PathTracer), so the two add up to the image without double counting and without bias.
-// - z is splatted the same way, weighted by the power heuristic against the path tracer, which
-//   also finds camera → z → specular+ → y → specular+ → light when both bounces are lucky.
-// - y and z are handed back as LightVertex, to which the path tracer connects each diffuse
-//   vertex x of the camera path (bidirectional path tracing's connection strategy, restricted to
-//   these light paths), again weighted against the path tracer's own bounces.
-// On smallpt's box, before these connections, the paths through y carried 82% of the variance
-// (those through z, specular-diffuse-specular, the larger part). Continuing diffusely from y
-// to any surface (caustics seen after more diffuse bounces) cost as much as the camera paths
-// and gained less than it cost: connections reach those paths from the camera side.
+// - every later vertex is splatted the same way, weighted by the power heuristic against the
+//   path tracer, which also finds camera → z → specular+ → y → specular+ → light when all its
+//   bounces are lucky;
+// - the vertices are handed back as a LightPath, to whose vertices the path tracer connects each
+//   diffuse vertex x of the camera path (bidirectional path tracing's connection strategy,
+//   restricted to these light paths), again weighted against the path tracer's own bounces.
+// On smallpt's box, before these connections, such paths carried 82% of the variance, most of
+// it through specular-diffuse-specular chains (the balls seen from the walls lit through the
+// balls). Continuing from y diffusely to any surface (caustics seen after more diffuse bounces)
+// cost as much as the camera paths and gained less than it cost: connections reach those
+// paths from the camera side.
 //
-// With cosine sampling at every diffuse vertex, the two strategies' densities for a path differ
-// only at its ends, whatever lies between (PathTracer::radiance): the light side's emission
-// density against the camera side's density of reaching the light path's first diffuse vertex.
+// A path x → v → (specular+ → diffuse)* → specular+ → light has exactly two strategies: the
+// path tracer's bounces, and the light path's vertex v met from x (a connection) or from the
+// eye (a splat). With cosine sampling at every diffuse vertex, their densities differ only at
+// the two ends, whatever lies between: the light side's emission density against the density
+// with which x (or the eye) reaches v.
 #pragma once
 
 #include "camera.h"
@@ -38,8 +44,10 @@ struct LightVertex {
     int hits = 0;              // surface hits from the light to here, both counted
 };
 
+inline constexpr int kLightVertices = 4;
+
 struct LightPath {
-    LightVertex vertices[2];  // y, then z
+    LightVertex vertices[kLightVertices];  // from the light: y, then the later ones
     int size = 0;
 };
 

@@ -2,7 +2,9 @@
 // the shading point, and sample/pdf consistency that MIS depends on.
 #include <gtest/gtest.h>
 
+#include "caustic_emitter.h"
 #include "lights.h"
+#include "scene_loader.h"
 #include "sampling.h"
 
 namespace glint {
@@ -175,6 +177,27 @@ TEST(Lights, LightCutByAnOpaqueSphereIsSampledOnTheVisibleCap) {
     const double f = double(hits) / brute_count, brute = 12 * kPi * f,
                  brute_sigma = 12 * kPi * std::sqrt(f * (1 - f) / brute_count);
     EXPECT_NEAR(mean, brute, 4 * std::hypot(sigma, brute_sigma));
+}
+
+TEST(Lights, CausticEmitterPdfAgreesWithItsSamples) {
+    // The path tracer weighs its bounces against light paths by the emitter's density of the
+    // light point and direction it reached; the light paths carry cos / that density from
+    // sampling. The two must agree for the weights to sum to one.
+    const LoadedScene loaded = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    const CausticEmitter& emitter = loaded.scene->caustic_emitter();
+    ASSERT_FALSE(emitter.empty());
+    Rng rng(31, 0, 0);
+    int emitted = 0;
+    for (int i = 0; i < 20000; ++i) {
+        EmittedRay e;
+        if (!emitter.sample(rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), e)) continue;
+        ++emitted;
+        const Sphere& light = loaded.scene->geometry().sphere(e.light);
+        const double cos_out = dot(normalize(e.ray.o - light.centre), e.ray.d);
+        EXPECT_NEAR(emitter.pdf(e.light, e.ray.o, e.ray.d) * e.emitted_ratio, cos_out, 1e-9 * cos_out);
+        EXPECT_NEAR(e.weight.x, 12 * e.emitted_ratio, 1e-9 * e.weight.x);
+    }
+    EXPECT_GT(emitted, 19000);
 }
 
 }  // namespace
