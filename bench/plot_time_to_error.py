@@ -23,8 +23,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 LABELS = {
-    ("glint", "glint"): "glint (auto: cap light sampling + MIS, Sobol' film, light-traced caustics)",
-    ("glint", "no-lt"): "glint without light tracing",
+    ("glint", "glint"): "glint (auto: cap light sampling + MIS, Sobol' film, light paths splatted and connected)",
+    ("glint", "no-lt"): "glint without light paths",
+    ("c02a220", "glint"): "glint before connections (c02a220: light-traced caustics seen directly)",
     ("glint", "smallpt"): "smallpt-equivalent mode (baseline)",
     ("d505f08", "glint"): "previous glint (d505f08)",
 }
