@@ -62,8 +62,12 @@ public:
                 }
                 size = push_children(node, mask, entries, stack, size);
             } else {
-                for (uint32_t i = current.index; i < current.index + current.count; ++i) found |= test(i, ray);
-                tmax = to_float_up(ray.tmax);
+                bool leaf_hit = false;
+                for (uint32_t i = current.index; i < current.index + current.count; ++i) leaf_hit |= test(i, ray);
+                if (leaf_hit) {  // only a hit moves the limit; rounding it costs more than the test's share
+                    found = true;
+                    tmax = to_float_up(ray.tmax);
+                }
             }
             // The nearest pending subtree that can still hold something nearer than the best hit.
             do {

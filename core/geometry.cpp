@@ -66,6 +66,7 @@ bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
 }
 
 bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
+    if (spheres_.empty()) return false;  // a mesh scene pays nothing for spheres
     auto test = [&](uint32_t prim, Ray& r) {
         double t;
         if (!spheres_[prim].intersect(r, prim == self, t)) return false;
@@ -101,6 +102,7 @@ bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) c
 }
 
 bool Geometry::sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
+    if (spheres_.empty()) return false;
     auto blocks = [&](uint32_t prim, const Ray& r) {
         double t;
         return prim != target && spheres_[prim].intersect(r, prim == self, t);
