@@ -109,13 +109,14 @@ TEST(Bvh, TreeIsWellFormed) {
             for (int slot = 0; slot < kBvhWidth; ++slot) {
                 const bool used = n.boxes.planes[0][slot] <= n.boxes.planes[1][slot];
                 if (!used) continue;
-                if (n.count[slot] > 0) {
-                    EXPECT_LE(n.count[slot], 4u);
-                    for (uint32_t k = n.child[slot]; k < n.child[slot] + n.count[slot]; ++k) ++seen[k];
+                const uint32_t index = ChildRef::index(n.child[slot]), count = ChildRef::count(n.child[slot]);
+                if (count > 0) {
+                    EXPECT_LE(count, BinaryTree::kMaxLeafSize);
+                    for (uint32_t k = index; k < index + count; ++k) ++seen[k];
                     continue;
                 }
-                const BvhNode& child = bvh->nodes()[n.child[slot]];
-                ++parents[n.child[slot]];
+                const BvhNode& child = bvh->nodes()[index];
+                ++parents[index];
                 for (int c = 0; c < kBvhWidth; ++c) {
                     if (!(child.boxes.planes[0][c] <= child.boxes.planes[1][c])) continue;
                     for (int a = 0; a < 3; ++a) {
