@@ -55,8 +55,17 @@ public:
     const std::vector<BvhNode>& nodes() const { return nodes_; }
     size_t memory_bytes() const { return nodes_.size() * sizeof(BvhNode); }
 
-    // Closest hit. `test(position, ray)` intersects the primitive at that build-order position
-    // and, on a hit, shrinks ray.tmax to it and returns true. Returns whether anything was hit.
+    // The leaves as runs of build-order positions: f(first, count) for each.
+    template <typename F>
+    void for_each_leaf(F&& f) const {
+        for (const BvhNode& node : nodes_)
+            for (uint32_t ref : node.child)
+                if (ChildRef::count(ref) > 0) f(ChildRef::index(ref), ChildRef::count(ref));
+    }
+
+    // Closest hit. `test(first, count, ray)` intersects the leaf's primitives at build-order
+    // positions first..first+count-1, in that order, shrinking ray.tmax to each hit, and returns
+    // whether any was hit. Returns whether anything was hit.
     template <typename Test>
     bool closest(Ray& ray, Test&& test) const {
         if (nodes_.empty()) return false;
@@ -89,10 +98,8 @@ public:
                     size = push_sorted(node, entry, mask, a, b, stack, size);
                 }
             } else {
-                bool leaf_hit = false;
-                const uint32_t begin = ChildRef::index(ref), end = begin + ChildRef::count(ref);
-                for (uint32_t i = begin; i < end; ++i) leaf_hit |= test(i, ray);
-                if (leaf_hit) {  // only a hit moves the limit; rounding it costs more than the test's share
+                if (test(ChildRef::index(ref), ChildRef::count(ref), ray)) {
+                    // Only a hit moves the limit; rounding it costs more than the test's share.
                     found = true;
                     tmax = to_float_up(ray.tmax);
                     cull = cull_key(tmax);
@@ -108,7 +115,8 @@ public:
         }
     }
 
-    // Any hit in (tmin, tmax]: `test(position, ray)` returns whether that primitive blocks the ray.
+    // Any hit in (tmin, tmax]: `test(first, count, ray)` returns whether one of the leaf's
+    // primitives blocks the ray.
     template <typename Test>
     bool any(const Ray& ray, Test&& test) const {
         if (nodes_.empty()) return false;
@@ -128,9 +136,7 @@ public:
                     continue;
                 }
             } else {
-                const uint32_t begin = ChildRef::index(ref), end = begin + ChildRef::count(ref);
-                for (uint32_t i = begin; i < end; ++i)
-                    if (test(i, ray)) return true;
+                if (test(ChildRef::index(ref), ChildRef::count(ref), ray)) return true;
             }
             if (size == 0) return false;
             ref = stack[--size];

@@ -1,6 +1,9 @@
 // Triangles: a watertight ray test and the surface point it finds.
 #pragma once
 
+#include <immintrin.h>
+
+#include <cstdint>
 #include <utility>
 
 #include "bounds.h"
@@ -135,6 +138,80 @@ struct PackedTriangle {
         const double c[3] = {double(v[2][s.kx]) - s.ox, double(v[2][s.ky]) - s.oy, double(v[2][s.kz]) - s.oz};
         return detail::watertight_test(a, b, c, s, ray, hit);
     }
+};
+
+// Triangles stored run by run, coordinate by coordinate: in a run of n (a BVH leaf, so at most
+// four), coordinate a of vertex j of the run's i-th triangle is at run[(3j + a)·n + i], so that
+// one load fetches that coordinate of all n triangles; a run of one is PackedTriangle's own
+// layout. Still 36 bytes a triangle, with kPadding floats after the last run for the four-wide
+// loads of a shorter run to read.
+namespace triangle_run {
+
+inline constexpr uint32_t kMaxSize = 4;
+inline constexpr size_t kPadding = kMaxSize - 1;
+
+inline PackedTriangle get(const float* run, uint32_t n, uint32_t i) {
+    PackedTriangle p;
+    const float* from = run + i;
+    for (int j = 0; j < 3; ++j)
+        for (int a = 0; a < 3; ++a, from += n) p.v[j][a] = *from;
+    return p;
+}
+
+inline void put(float* run, uint32_t n, uint32_t i, const PackedTriangle& p) {
+    for (int j = 0; j < 3; ++j)
+        for (int a = 0; a < 3; ++a) run[(3 * j + a) * n + i] = p.v[j][a];
+}
+
+}  // namespace triangle_run
+
+// The edge functions of detail::watertight_test for up to four triangles of a run at once, in
+// AVX double precision, operation for operation the scalar ones (nothing fused: CMakeLists.txt
+// turns contraction off), so bit for bit the same values. A lane whose three values are nonzero
+// and of mixed signs is a triangle the scalar test rejects at its sign check, without its
+// long-double tie-break; the filter leaves every other triangle, NaN lanes included, for the
+// scalar test to decide, so it changes no answer and saves the work of most misses.
+class RunEdgeFilter {
+public:
+    explicit RunEdgeFilter(const RayShear& s)
+        : axis_{uint32_t(s.kx), uint32_t(s.ky), uint32_t(s.kz)},
+          origin_{_mm256_set1_pd(s.ox), _mm256_set1_pd(s.oy), _mm256_set1_pd(s.oz)},
+          sx_(_mm256_set1_pd(s.sx)),
+          sy_(_mm256_set1_pd(s.sy)) {}
+
+    // Bit i is set when triangle i of the run (i < n) may be hit.
+    unsigned candidates(const float* run, uint32_t n) const {
+        const uint32_t offset[3] = {axis_[0] * n, axis_[1] * n, axis_[2] * n};
+        __m256d a[2], b[2], c[2];
+        sheared(run, offset, a);
+        sheared(run + 3 * n, offset, b);
+        sheared(run + 6 * n, offset, c);
+        const __m256d u = _mm256_sub_pd(_mm256_mul_pd(c[0], b[1]), _mm256_mul_pd(c[1], b[0]));
+        const __m256d v = _mm256_sub_pd(_mm256_mul_pd(a[0], c[1]), _mm256_mul_pd(a[1], c[0]));
+        const __m256d w = _mm256_sub_pd(_mm256_mul_pd(b[0], a[1]), _mm256_mul_pd(b[1], a[0]));
+        const __m256d zero = _mm256_setzero_pd();
+        const __m256d negative = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_LT_OQ), _mm256_cmp_pd(v, zero, _CMP_LT_OQ)),
+                                              _mm256_cmp_pd(w, zero, _CMP_LT_OQ));
+        const __m256d positive = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_GT_OQ), _mm256_cmp_pd(v, zero, _CMP_GT_OQ)),
+                                              _mm256_cmp_pd(w, zero, _CMP_GT_OQ));
+        const __m256d on_edge = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_EQ_OQ), _mm256_cmp_pd(v, zero, _CMP_EQ_OQ)),
+                                             _mm256_cmp_pd(w, zero, _CMP_EQ_OQ));
+        const __m256d misses = _mm256_andnot_pd(on_edge, _mm256_and_pd(negative, positive));
+        return ~static_cast<unsigned>(_mm256_movemask_pd(misses)) & ((1u << n) - 1);
+    }
+
+private:
+    // One vertex of the run's triangles (its x coordinates at `vertex`, offset[k] floats on
+    // those along the ray's permuted axis k) relative to the origin, sheared: watertight_test's a2.
+    void sheared(const float* vertex, const uint32_t offset[3], __m256d out[2]) const {
+        __m256d p[3];
+        for (int k = 0; k < 3; ++k) p[k] = _mm256_sub_pd(_mm256_cvtps_pd(_mm_loadu_ps(vertex + offset[k])), origin_[k]);
+        out[0] = _mm256_sub_pd(p[0], _mm256_mul_pd(sx_, p[2]));
+        out[1] = _mm256_sub_pd(p[1], _mm256_mul_pd(sy_, p[2]));
+    }
+
+    uint32_t axis_[3];
+    __m256d origin_[3], sx_, sy_;
 };
 
 }  // namespace glint

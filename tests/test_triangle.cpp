@@ -141,5 +141,54 @@ TEST(Triangle, HitPointsStayWithinTheirErrorBounds) {
     }
 }
 
+// The run filter only skips triangles the scalar test rejects: for runs of 2 to 4 triangles and
+// rays aimed at random points, at their edges and at their vertices (from far away, so that
+// the edge functions are tiny against the coordinates), every triangle the scalar test hits is
+// kept, and the filter rejects a good share of the rest.
+TEST(Triangle, RunFilterNeverRejectsATriangleTheScalarTestHits) {
+    Rng rng(9, 0, 0);
+    auto point = [&] { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 2 - Vec3{1}; };
+    int hits = 0, misses = 0, rejected = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        const uint32_t n = 2 + trial % 3;
+        const Vec3 offset = trial % 2 ? Vec3{1e4, -3e3, 7e3} : Vec3{0, 0, 0};
+        std::vector<PackedTriangle> packed;
+        const Vec3 shared_a = point(), shared_b = point();  // an edge the first two triangles share
+        for (uint32_t i = 0; i < n; ++i) {
+            const Triangle t = i < 2 ? Triangle{shared_a + offset, shared_b + offset, point() + offset}
+                                     : Triangle{point() + offset, point() + offset, point() + offset};
+            packed.push_back(PackedTriangle::pack(t));
+        }
+        std::vector<float> run(9 * n + triangle_run::kPadding, std::nanf(""));
+        for (uint32_t i = 0; i < n; ++i) triangle_run::put(run.data(), n, i, packed[i]);
+        // The target: inside a triangle, on the shared edge, or on a vertex, as stored.
+        const Triangle aim = packed[rng.uniform() < 0.5 ? 0 : n - 1].unpack();
+        const double b1 = rng.uniform(), b2 = rng.uniform() * (1 - b1);
+        const int kind = trial % 4;
+        const Vec3 target = kind == 0 ? aim.v0 * (1 - b1 - b2) + aim.v1 * b1 + aim.v2 * b2
+                            : kind == 1 ? aim.v0 * (1 - b1) + aim.v1 * b1
+                            : kind == 2 ? aim.v1
+                                        : aim.v0 + (point() * 1e-9);
+        const Vec3 origin = target + normalize(point()) * (trial % 5 == 0 ? 1e5 : 3.0);
+        const Ray ray{origin, normalize(target - origin), -kInfinity, kInfinity};
+        const RayShear shear(ray);
+        const unsigned kept = RunEdgeFilter(shear).candidates(run.data(), n);
+        EXPECT_EQ(kept >> n, 0u);
+        for (uint32_t i = 0; i < n; ++i) {
+            TriangleHit hit;
+            const bool scalar = triangle_run::get(run.data(), n, i).intersect(ray, shear, hit);
+            hits += scalar;
+            misses += !scalar;
+            const bool keep = kept >> i & 1;
+            rejected += !keep;
+            if (scalar) {
+                EXPECT_TRUE(keep) << "trial " << trial << " triangle " << i;
+            }
+        }
+    }
+    EXPECT_GT(hits, 2000);
+    EXPECT_GT(rejected, misses / 2);  // the filter does its job on most misses
+}
+
 }  // namespace
 }  // namespace glint
