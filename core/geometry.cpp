@@ -59,22 +59,22 @@ uint32_t Geometry::position(uint32_t prim) const {
 
 // A triangle is flat, so a ray leaving it cannot meet it again; a sphere is told, so that it
 // keeps only the far root (see Sphere::intersect).
+// The lane of position `pos` in the run starting at `first` of `count` triangles, as a mask.
+static unsigned lane_mask(uint32_t pos, uint32_t first, uint32_t count) {
+    return pos - first < count ? 1u << (pos - first) : 0u;
+}
+
 bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
     const uint32_t skip = position(self);
     const RayShear shear(ray);
-    const RunEdgeFilter filter(shear);
+    const RunTest run_test(shear);
     auto test_run = [&](uint32_t first, uint32_t count, Ray& r) {
-        const float* run = &triangle_runs_[9 * size_t(first)];
-        bool found = false;
-        for (unsigned m = count == 1 ? 1u : filter.candidates(run, count); m != 0; m &= m - 1) {
-            const auto i = static_cast<uint32_t>(__builtin_ctz(m));
-            const uint32_t pos = first + i;
-            if (pos == skip || !triangle_run::get(run, count, i).intersect(r, shear, hit.triangle)) continue;
-            hit.t = r.tmax = hit.triangle.t;
-            hit.prim = triangle_id(triangle_at_.empty() ? pos : triangle_at_[pos]);
-            found = true;
-        }
-        return found;
+        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lane_mask(skip, first, count), r, hit.triangle);
+        if (i < 0) return false;
+        const uint32_t pos = first + static_cast<uint32_t>(i);
+        hit.t = r.tmax = hit.triangle.t;
+        hit.prim = triangle_id(triangle_at_.empty() ? pos : triangle_at_[pos]);
+        return true;
     };
     if (accelerator_ == Accelerator::bvh) return triangle_bvh_.closest(ray, test_run);
     bool found = false;
@@ -112,16 +112,10 @@ bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
 bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
     const uint32_t skip = position(self), wanted = position(target);
     const RayShear shear(ray);
-    const RunEdgeFilter filter(shear);
+    const RunTest run_test(shear);
     auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) {
-        const float* run = &triangle_runs_[9 * size_t(first)];
-        for (unsigned m = count == 1 ? 1u : filter.candidates(run, count); m != 0; m &= m - 1) {
-            const auto i = static_cast<uint32_t>(__builtin_ctz(m));
-            const uint32_t pos = first + i;
-            TriangleHit unused;
-            if (pos != skip && pos != wanted && triangle_run::get(run, count, i).intersect(r, shear, unused)) return true;
-        }
-        return false;
+        const unsigned left_out = lane_mask(skip, first, count) | lane_mask(wanted, first, count);
+        return run_test.any(&triangle_runs_[9 * size_t(first)], count, left_out, r);
     };
     if (accelerator_ == Accelerator::bvh) return triangle_bvh_.any(ray, blocks);
     for (uint32_t pos = 0; pos < run_slot_.size(); ++pos)

@@ -141,16 +141,16 @@ TEST(Triangle, HitPointsStayWithinTheirErrorBounds) {
     }
 }
 
-// The run filter only skips triangles the scalar test rejects: for runs of 2 to 4 triangles and
-// rays aimed at random points, at their edges and at their vertices (from far away, so that
-// the edge functions are tiny against the coordinates), every triangle the scalar test hits is
-// kept, and the filter rejects a good share of the rest.
-TEST(Triangle, RunFilterNeverRejectsATriangleTheScalarTestHits) {
+// The run test answers as the scalar test of each triangle in turn does: for runs of 2 to 4
+// triangles and rays aimed at random points, at a shared edge and at vertices (from far away
+// too, so that the edge functions are tiny against the coordinates), the same triangle, t and
+// barycentrics bit for bit, the nearest and the last of equals, with a skipped lane left out.
+TEST(Triangle, RunTestAnswersAsTheScalarTestInTurn) {
     Rng rng(9, 0, 0);
     auto point = [&] { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 2 - Vec3{1}; };
-    int hits = 0, misses = 0, rejected = 0;
+    int hits = 0, shared_edge_hits = 0;
     for (int trial = 0; trial < 4000; ++trial) {
-        const uint32_t n = 2 + trial % 3;
+        const uint32_t n = 1 + trial % 4;
         const Vec3 offset = trial % 2 ? Vec3{1e4, -3e3, 7e3} : Vec3{0, 0, 0};
         std::vector<PackedTriangle> packed;
         const Vec3 shared_a = point(), shared_b = point();  // an edge the first two triangles share
@@ -170,24 +170,33 @@ TEST(Triangle, RunFilterNeverRejectsATriangleTheScalarTestHits) {
                             : kind == 2 ? aim.v1
                                         : aim.v0 + (point() * 1e-9);
         const Vec3 origin = target + normalize(point()) * (trial % 5 == 0 ? 1e5 : 3.0);
-        const Ray ray{origin, normalize(target - origin), -kInfinity, kInfinity};
+        const Ray ray{origin, normalize(target - origin), trial % 3 == 0 ? -kInfinity : 0.0, kInfinity};
         const RayShear shear(ray);
-        const unsigned kept = RunEdgeFilter(shear).candidates(run.data(), n);
-        EXPECT_EQ(kept >> n, 0u);
-        for (uint32_t i = 0; i < n; ++i) {
-            TriangleHit hit;
-            const bool scalar = triangle_run::get(run.data(), n, i).intersect(ray, shear, hit);
-            hits += scalar;
-            misses += !scalar;
-            const bool keep = kept >> i & 1;
-            rejected += !keep;
-            if (scalar) {
-                EXPECT_TRUE(keep) << "trial " << trial << " triangle " << i;
+        const unsigned skip = trial % 7 == 0 ? 1u : 0u;
+        // The scalar tests in turn.
+        Ray r = ray;
+        int expected = -1;
+        TriangleHit expected_hit, hit;
+        for (uint32_t i = 0; i < n; ++i)
+            if (!(skip >> i & 1) && packed[i].intersect(r, shear, hit)) {
+                expected = int(i);
+                expected_hit = hit;
+                r.tmax = hit.t;
             }
-        }
+        TriangleHit got;
+        const RunTest test(shear);
+        ASSERT_EQ(test.closest(run.data(), n, skip, ray, got), expected) << "trial " << trial;
+        EXPECT_EQ(test.any(run.data(), n, skip, ray), expected >= 0) << "trial " << trial;
+        if (expected < 0) continue;
+        ++hits;
+        shared_edge_hits += kind == 1 && expected < 2;
+        EXPECT_EQ(got.t, expected_hit.t);
+        EXPECT_EQ(got.b0, expected_hit.b0);
+        EXPECT_EQ(got.b1, expected_hit.b1);
+        EXPECT_EQ(got.b2, expected_hit.b2);
     }
     EXPECT_GT(hits, 2000);
-    EXPECT_GT(rejected, misses / 2);  // the filter does its job on most misses
+    EXPECT_GT(shared_edge_hits, 300);
 }
 
 }  // namespace
