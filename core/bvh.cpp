@@ -65,7 +65,7 @@ private:
 }  // namespace
 
 Bvh Bvh::build(std::span<const Bounds3> prim_bounds) {
-    if (prim_bounds.size() > ChildRef::kMaxIndex) throw std::length_error("too many primitives for one BVH");
+    if (prim_bounds.size() > ChildRef::kMaxPrimitives) throw std::length_error("too many primitives for one BVH");
     BinaryTree tree = build_sah_tree(prim_bounds);
     Bvh bvh;
     if (!tree.nodes.empty()) bvh.nodes_ = Collapser(tree.nodes).run();

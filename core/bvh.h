@@ -18,26 +18,32 @@
 
 namespace glint {
 
-// Where a child slot leads, in one word: a node index or a leaf's first position in build order,
-// shifted left by three, and the leaf's primitive count (1..kMaxLeafSize) in the low three bits;
-// 0 marks an inner node. One word per child keeps a node at 224 bytes and lets the traversal
-// stack hold a child and its entry distance in one 64-bit key.
+// Where a child slot leads, in one word. A leaf: its first position in build order, shifted
+// left by three, and its primitive count (1..kMaxLeafSize) in the low three bits. An inner node:
+// its offset in the node array in 4-byte words (a multiple of eight, so the low bits are 0),
+// which the traversal turns into an address with one scaled add. One word per child keeps a
+// node at 224 bytes and lets the traversal stack hold a child and its entry distance in one
+// 64-bit key.
 struct ChildRef {
     static constexpr uint32_t kCountBits = 3;
-    static constexpr uint32_t kMaxIndex = (uint32_t{1} << (32 - kCountBits)) - 1;
-    static uint32_t node(uint32_t index) { return index << kCountBits; }
+    static constexpr uint32_t kNodeWords = 56;  // sizeof(BvhNode) / 4
+    // Keeps every offset in 32 bits: a tree has fewer nodes than primitives.
+    static constexpr uint32_t kMaxPrimitives = uint32_t{1} << 26;
+    static uint32_t node(uint32_t index) { return index * kNodeWords; }
     static uint32_t leaf(uint32_t first, uint32_t count) { return first << kCountBits | count; }
-    static uint32_t index(uint32_t ref) { return ref >> kCountBits; }
+    static uint32_t node_index(uint32_t ref) { return ref / kNodeWords; }
+    static uint32_t first(uint32_t ref) { return ref >> kCountBits; }
     static uint32_t count(uint32_t ref) { return ref & ((1u << kCountBits) - 1); }
 };
 static_assert(BinaryTree::kMaxLeafSize < (1u << ChildRef::kCountBits));
+static_assert(uint64_t{ChildRef::kMaxPrimitives} * ChildRef::kNodeWords < (uint64_t{1} << 32));
 
 // 224 bytes: the boxes of up to eight children and where each child leads.
 struct alignas(32) BvhNode {
     WideBox boxes;
     uint32_t child[kBvhWidth];  // ChildRef words; an unused slot holds 0 behind an empty box
 };
-static_assert(sizeof(BvhNode) == 224);
+static_assert(sizeof(BvhNode) == 4 * ChildRef::kNodeWords);
 
 class Bvh {
 public:
@@ -45,7 +51,7 @@ public:
 
     Bvh() = default;
     // Builds over primitives 0..n-1; primitives with empty boxes are left out of the tree.
-    // Throws std::length_error beyond ChildRef::kMaxIndex primitives.
+    // Throws std::length_error beyond ChildRef::kMaxPrimitives primitives.
     static Bvh build(std::span<const Bounds3> prim_bounds);
 
     // Build order: position -> primitive. The primitives in the tree come first (the leaves
@@ -60,7 +66,7 @@ public:
     void for_each_leaf(F&& f) const {
         for (const BvhNode& node : nodes_)
             for (uint32_t ref : node.child)
-                if (ChildRef::count(ref) > 0) f(ChildRef::index(ref), ChildRef::count(ref));
+                if (ChildRef::count(ref) > 0) f(ChildRef::first(ref), ChildRef::count(ref));
     }
 
     // Closest hit. `test(first, count, ray)` intersects the leaf's primitives at build-order
@@ -70,17 +76,19 @@ public:
     bool closest(Ray& ray, Test&& test) const {
         if (nodes_.empty()) return false;
         const RayBoxTest box(ray);
+        const BvhNode* const nodes = nodes_.data();  // held here: the tests' stores might alias nodes_
         uint64_t stack[kStackSize];
         int size = 0;
         uint32_t ref = ChildRef::node(0);
         float tmax = to_float_up(ray.tmax);
+        __m256 tmax8 = _mm256_set1_ps(tmax);
         uint64_t cull = cull_key(tmax);
         bool found = false;
         for (;;) {
             if (ChildRef::count(ref) == 0) {
-                const BvhNode& node = nodes_[ChildRef::index(ref)];
+                const BvhNode& node = at(nodes, ref);
                 __m256 entries;
-                unsigned mask = box.hit(node.boxes, tmax, entries);
+                unsigned mask = box.hit(node.boxes, tmax8, entries);
                 if (mask != 0) {
                     const unsigned first = first_slot(mask);
                     if (mask == 0) {  // one child entered: no stack
@@ -98,10 +106,11 @@ public:
                     size = push_sorted(node, entry, mask, a, b, stack, size);
                 }
             } else {
-                if (test(ChildRef::index(ref), ChildRef::count(ref), ray)) {
+                if (test(ChildRef::first(ref), ChildRef::count(ref), ray)) {
                     // Only a hit moves the limit; rounding it costs more than the test's share.
                     found = true;
                     tmax = to_float_up(ray.tmax);
+                    tmax8 = _mm256_set1_ps(tmax);
                     cull = cull_key(tmax);
                 }
             }
@@ -121,14 +130,15 @@ public:
     bool any(const Ray& ray, Test&& test) const {
         if (nodes_.empty()) return false;
         const RayBoxTest box(ray);
-        const float tmax = to_float_up(ray.tmax);
+        const BvhNode* const nodes = nodes_.data();
+        const __m256 tmax = _mm256_set1_ps(to_float_up(ray.tmax));
         uint32_t stack[kStackSize];
         int size = 0;
         uint32_t ref = ChildRef::node(0);
         for (;;) {
             if (ChildRef::count(ref) == 0) {
                 __m256 entries;
-                const BvhNode& node = nodes_[ChildRef::index(ref)];
+                const BvhNode& node = at(nodes, ref);
                 unsigned mask = box.hit(node.boxes, tmax, entries);
                 if (mask != 0) {
                     ref = node.child[first_slot(mask)];
@@ -136,7 +146,7 @@ public:
                     continue;
                 }
             } else {
-                if (test(ChildRef::index(ref), ChildRef::count(ref), ray)) return true;
+                if (test(ChildRef::first(ref), ChildRef::count(ref), ray)) return true;
             }
             if (size == 0) return false;
             ref = stack[--size];
@@ -145,6 +155,10 @@ public:
 
 private:
     static constexpr int kStackSize = (kBvhWidth - 1) * kMaxDepth + 1;  // each level leaves at most 7 behind
+
+    static const BvhNode& at(const BvhNode* nodes, uint32_t ref) {
+        return *reinterpret_cast<const BvhNode*>(reinterpret_cast<const char*>(nodes) + size_t{ref} * 4);
+    }
 
     // The lowest slot in `mask`, which loses it.
     static unsigned first_slot(unsigned& mask) {

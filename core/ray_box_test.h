@@ -54,8 +54,8 @@ public:
     }
 
     // Bit i of the result is set when box i overlaps the ray in (tmin, tmax]; `entry` receives
-    // the eight entry distances. `tmax` is the ray's limit rounded up to float.
-    int hit(const WideBox& box, float tmax, __m256& entry) const {
+    // the eight entry distances. `tmax` is the ray's limit rounded up to float, in every lane.
+    int hit(const WideBox& box, __m256 tmax, __m256& entry) const {
         const float* planes = &box.planes[0][0];
         __m256 t_near = _mm256_max_ps(distance(planes, near_offset_[2], near_origin_[2], inv_[2]), tmin_);
         t_near = _mm256_max_ps(distance(planes, near_offset_[1], near_origin_[1], inv_[1]), t_near);
@@ -64,7 +64,7 @@ public:
         __m256 t_far = _mm256_min_ps(distance(planes, far_offset_[2], far_origin_[2], inv_[2]), _mm256_set1_ps(kInfinityF));
         t_far = _mm256_min_ps(distance(planes, far_offset_[1], far_origin_[1], inv_[1]), t_far);
         t_far = _mm256_min_ps(distance(planes, far_offset_[0], far_origin_[0], inv_[0]), t_far);
-        t_far = _mm256_min_ps(_mm256_mul_ps(t_far, _mm256_set1_ps(kPad)), _mm256_set1_ps(tmax));
+        t_far = _mm256_min_ps(_mm256_mul_ps(t_far, _mm256_set1_ps(kPad)), tmax);
         entry = t_near;
         return _mm256_movemask_ps(_mm256_cmp_ps(t_near, t_far, _CMP_LE_OQ));
     }

@@ -109,12 +109,14 @@ TEST(Bvh, TreeIsWellFormed) {
             for (int slot = 0; slot < kBvhWidth; ++slot) {
                 const bool used = n.boxes.planes[0][slot] <= n.boxes.planes[1][slot];
                 if (!used) continue;
-                const uint32_t index = ChildRef::index(n.child[slot]), count = ChildRef::count(n.child[slot]);
+                const uint32_t ref = n.child[slot], count = ChildRef::count(ref);
                 if (count > 0) {
                     EXPECT_LE(count, BinaryTree::kMaxLeafSize);
-                    for (uint32_t k = index; k < index + count; ++k) ++seen[k];
+                    for (uint32_t k = ChildRef::first(ref); k < ChildRef::first(ref) + count; ++k) ++seen[k];
                     continue;
                 }
+                const uint32_t index = ChildRef::node_index(ref);
+                ASSERT_EQ(ChildRef::node(index), ref);
                 const BvhNode& child = bvh->nodes()[index];
                 ++parents[index];
                 for (int c = 0; c < kBvhWidth; ++c) {
