@@ -12,7 +12,9 @@ Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& tri
         packed.push_back(PackedTriangle::pack(input));
         const Triangle t = packed.back().unpack();
         // A zero-area triangle can never be hit (its determinant is 0): leave it out of the tree.
-        const bool degenerate = !(t.area() > 0);
+        // The squared length of the normal is positive exactly when the area is, without a root.
+        const Vec3 n = t.unnormalized_normal();
+        const bool degenerate = !(dot(n, n) > 0);
         degenerate_ += degenerate;
         triangle_bounds.push_back(degenerate ? Bounds3{} : t.bounds());
     }
