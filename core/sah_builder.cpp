@@ -50,14 +50,16 @@ struct SseBox {
     }
 };
 
-// A primitive's box and centre, computed once for the whole build, and its bin along each axis
-// in the node being split, which the binning pass leaves for the partition.
+// A primitive's box and its bin along each axis in the node being split, which the binning
+// pass leaves for the partition. 48 bytes: the centre is recomputed rather than stored, as the
+// build streams these through the cache once per level.
 struct BuildPrim {
     SseBox box;
-    __m128 centre;
     uint32_t index;
     std::array<uint8_t, 3> bin;
+    __m128 centre() const { return box.centre(); }
 };
+static_assert(sizeof(BuildPrim) == 48);
 
 // Maps centres to bins along all three axes at once.
 class Binning {
@@ -112,7 +114,7 @@ private:
         SseBox bounds, centres;
         for (uint32_t i = begin; i < end; ++i) {
             bounds.extend(prims_[i].box);
-            centres.extend(prims_[i].centre);
+            centres.extend(prims_[i].centre());
         }
         (*nodes_)[node].box = bounds.to_float_box();
         const uint32_t count = end - begin;
@@ -150,7 +152,7 @@ private:
         std::array<std::array<uint32_t, kBins>, 3> counts{};
         for (uint32_t i = begin; i < end; ++i) {
             BuildPrim& p = prims_[i];
-            const std::array<int, 3> b = binning.bins(p.centre);
+            const std::array<int, 3> b = binning.bins(p.centre());
             for (int a = 0; a < 3; ++a) {
                 bins[a][b[a]].extend(p.box);
                 ++counts[a][b[a]];
@@ -192,8 +194,8 @@ private:
         std::nth_element(prims_.begin() + begin, prims_.begin() + mid, prims_.begin() + end,
                          [axis](const BuildPrim& a, const BuildPrim& b) {
                              alignas(16) float ca[4], cb[4];
-                             _mm_store_ps(ca, a.centre);
-                             _mm_store_ps(cb, b.centre);
+                             _mm_store_ps(ca, a.centre());
+                             _mm_store_ps(cb, b.centre());
                              return ca[axis] < cb[axis];
                          });
         return mid;
@@ -212,7 +214,7 @@ BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds) {
         if (prim_bounds[i].empty()) continue;
         const FloatBox f = FloatBox::enclosing(prim_bounds[i]);
         const SseBox box{_mm_setr_ps(f.lo[0], f.lo[1], f.lo[2], 0), _mm_setr_ps(f.hi[0], f.hi[1], f.hi[2], 0)};
-        prims.push_back({box, box.centre(), i, {}});
+        prims.push_back({box, i, {}});
     }
     if (prims.empty()) return {};
     return Builder(std::move(prims)).run();
