@@ -85,7 +85,6 @@ bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
 }
 
 bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
-    if (spheres_.empty()) return false;  // a mesh scene pays nothing for spheres
     auto test = [&](uint32_t prim, Ray& r) {
         double t;
         if (!spheres_[prim].intersect(r, prim == self, t)) return false;
@@ -107,8 +106,10 @@ bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
 bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
     if (!is_finite(ray.o) || !is_finite(ray.d)) return false;  // would visit every node for nothing
     Ray r = ray;
-    const bool triangle_hit = closest_triangle(r, self, hit);
-    return closest_sphere(r, self, hit) || triangle_hit;
+    // A mesh scene pays nothing for spheres, not even the call, and a sphere scene nothing for
+    // triangles (not even the ray's shear).
+    const bool triangle_hit = !run_slot_.empty() && closest_triangle(r, self, hit);
+    return (!spheres_.empty() && closest_sphere(r, self, hit)) || triangle_hit;
 }
 
 bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
@@ -126,7 +127,6 @@ bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) c
 }
 
 bool Geometry::sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
-    if (spheres_.empty()) return false;
     auto blocks = [&](uint32_t prim, const Ray& r) {
         double t;
         return prim != target && spheres_[prim].intersect(r, prim == self, t);
@@ -144,7 +144,8 @@ bool Geometry::sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) con
 
 bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
     if (!is_finite(ray.o) || !is_finite(ray.d)) return false;
-    return sphere_blocks(ray, self, target) || triangle_blocks(ray, self, target);
+    return (!spheres_.empty() && sphere_blocks(ray, self, target)) ||
+           (!run_slot_.empty() && triangle_blocks(ray, self, target));
 }
 
 SurfaceInteraction Geometry::interaction(const Ray& ray, const Hit& hit) const {
