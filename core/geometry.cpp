@@ -59,13 +59,20 @@ uint32_t Geometry::position(uint32_t prim) const {
     return position_of_.empty() ? index : position_of_[index];
 }
 
-// A triangle is flat, so a ray leaving it cannot meet it again; a sphere is told, so that it
-// keeps only the far root (see Sphere::intersect).
-// The lane of position `pos` in the run starting at `first` of `count` triangles, as a mask.
-static unsigned lane_mask(uint32_t pos, uint32_t first, uint32_t count) {
+namespace {
+
+static_assert(BinaryTree::kMaxLeafSize <= triangle_run::kMaxSize, "a leaf must fit one run test");
+
+// The lane of position `pos` in the run of `count` triangles starting at `first`, as a mask (0
+// when `pos` lies outside the run, kNoPrimitive included).
+unsigned lane_mask(uint32_t pos, uint32_t first, uint32_t count) {
     return pos - first < count ? 1u << (pos - first) : 0u;
 }
 
+}  // namespace
+
+// A triangle is flat, so a ray leaving it cannot meet it again; a sphere is told, so that it
+// keeps only the far root (see Sphere::intersect).
 bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
     const uint32_t skip = position(self);
     const RayShear shear(ray);
