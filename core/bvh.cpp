@@ -1,6 +1,7 @@
 #include "bvh.h"
 
 #include <array>
+#include <stdexcept>
 
 namespace glint {
 namespace {
@@ -42,7 +43,7 @@ private:
             if (child.is_leaf()) continue;
             const auto index = static_cast<uint32_t>(nodes_.size());
             nodes_.emplace_back();
-            nodes_[node].child[slot] = index;
+            nodes_[node].child[slot] = ChildRef::node(index);
             fill(index, {{child.first, child.first + 1}}, 2);
         }
     }
@@ -54,8 +55,7 @@ private:
             n.boxes.planes[2 * a][slot] = child ? child->box.lo[a] : inf;
             n.boxes.planes[2 * a + 1][slot] = child ? child->box.hi[a] : -inf;
         }
-        n.child[slot] = child && child->is_leaf() ? child->first : 0;
-        n.count[slot] = child ? child->count : 0;
+        n.child[slot] = child && child->is_leaf() ? ChildRef::leaf(child->first, child->count) : 0;
     }
 
     const std::vector<BinaryNode>& binary_;
@@ -65,6 +65,7 @@ private:
 }  // namespace
 
 Bvh Bvh::build(std::span<const Bounds3> prim_bounds) {
+    if (prim_bounds.size() > ChildRef::kMaxPrimitives) throw std::length_error("too many primitives for one BVH");
     BinaryTree tree = build_sah_tree(prim_bounds);
     Bvh bvh;
     if (!tree.nodes.empty()) bvh.nodes_ = Collapser(tree.nodes).run();

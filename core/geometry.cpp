@@ -12,14 +12,16 @@ Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& tri
         packed.push_back(PackedTriangle::pack(input));
         const Triangle t = packed.back().unpack();
         // A zero-area triangle can never be hit (its determinant is 0): leave it out of the tree.
-        const bool degenerate = !(t.area() > 0);
+        // The squared length of the normal is positive exactly when the area is, without a root.
+        const Vec3 n = t.unnormalized_normal();
+        const bool degenerate = !(dot(n, n) > 0);
         degenerate_ += degenerate;
         triangle_bounds.push_back(degenerate ? Bounds3{} : t.bounds());
     }
     if (accelerator_ == Accelerator::automatic)
         accelerator_ = spheres_.size() + packed.size() <= kListMaxPrimitives ? Accelerator::list : Accelerator::bvh;
     if (accelerator_ != Accelerator::bvh) {
-        triangles_ = std::move(packed);
+        store_runs(packed, {});
         return;
     }
     std::vector<Bounds3> sphere_bounds;
@@ -30,38 +32,62 @@ Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& tri
     triangle_bvh_ = Bvh::build(triangle_bounds);
     triangle_at_ = triangle_bvh_.order();
     position_of_.resize(packed.size());
-    triangles_.reserve(packed.size());
-    for (uint32_t pos = 0; pos < triangle_at_.size(); ++pos) {
-        position_of_[triangle_at_[pos]] = pos;
-        triangles_.push_back(packed[triangle_at_[pos]]);
-    }
+    for (uint32_t pos = 0; pos < triangle_at_.size(); ++pos) position_of_[triangle_at_[pos]] = pos;
+    store_runs(packed, triangle_at_);
+}
+
+void Geometry::store_runs(const std::vector<PackedTriangle>& packed, const std::vector<uint32_t>& triangle_at) {
+    run_slot_.assign(packed.size(), uint8_t{1 << 4});
+    triangle_bvh_.for_each_leaf([&](uint32_t first, uint32_t count) {
+        for (uint32_t i = 0; i < count; ++i) run_slot_[first + i] = static_cast<uint8_t>(count << 4 | i);
+    });
+    triangle_runs_.assign(9 * packed.size() + triangle_run::kPadding, 0.0f);
+    for (uint32_t pos = 0; pos < packed.size(); ++pos)
+        triangle_run::put(&triangle_runs_[run_start(pos)], run_size(pos), run_index(pos),
+                          packed[triangle_at.empty() ? pos : triangle_at[pos]]);
 }
 
 size_t Geometry::memory_bytes() const {
     return sphere_bvh_.memory_bytes() + sphere_bvh_.order().size() * sizeof(uint32_t) + triangle_bvh_.memory_bytes() +
-           triangles_.size() * sizeof(PackedTriangle) + (triangle_at_.size() + position_of_.size()) * sizeof(uint32_t);
+           triangle_runs_.size() * sizeof(float) + run_slot_.size() +
+           (triangle_at_.size() + position_of_.size()) * sizeof(uint32_t);
 }
 
 uint32_t Geometry::position(uint32_t prim) const {
-    if (prim < spheres_.size() || prim - spheres_.size() >= triangles_.size()) return kNoPrimitive;
+    if (prim < spheres_.size() || prim - spheres_.size() >= run_slot_.size()) return kNoPrimitive;
     const auto index = static_cast<uint32_t>(prim - spheres_.size());
     return position_of_.empty() ? index : position_of_[index];
 }
+
+namespace {
+
+static_assert(BinaryTree::kMaxLeafSize <= triangle_run::kMaxSize, "a leaf must fit one run test");
+
+// The lane of position `pos` in the run of `count` triangles starting at `first`, as a mask (0
+// when `pos` lies outside the run, kNoPrimitive included).
+unsigned lane_mask(uint32_t pos, uint32_t first, uint32_t count) {
+    return pos - first < count ? 1u << (pos - first) : 0u;
+}
+
+}  // namespace
 
 // A triangle is flat, so a ray leaving it cannot meet it again; a sphere is told, so that it
 // keeps only the far root (see Sphere::intersect).
 bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
     const uint32_t skip = position(self);
     const RayShear shear(ray);
-    auto test = [&](uint32_t pos, Ray& r) {
-        if (pos == skip || !triangles_[pos].intersect(r, shear, hit.triangle)) return false;
+    const RunTest run_test(shear);
+    auto test_run = [&](uint32_t first, uint32_t count, Ray& r) {
+        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lane_mask(skip, first, count), r, hit.triangle);
+        if (i < 0) return false;
+        const uint32_t pos = first + static_cast<uint32_t>(i);
         hit.t = r.tmax = hit.triangle.t;
         hit.prim = triangle_id(triangle_at_.empty() ? pos : triangle_at_[pos]);
         return true;
     };
-    if (accelerator_ == Accelerator::bvh) return triangle_bvh_.closest(ray, test);
+    if (accelerator_ == Accelerator::bvh) return triangle_bvh_.closest(ray, test_run);
     bool found = false;
-    for (uint32_t pos = 0; pos < triangles_.size(); ++pos) found |= test(pos, ray);
+    for (uint32_t pos = 0; pos < run_slot_.size(); ++pos) found |= test_run(pos, 1, ray);
     return found;
 }
 
@@ -74,7 +100,11 @@ bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
         return true;
     };
     if (accelerator_ == Accelerator::bvh)
-        return sphere_bvh_.closest(ray, [&](uint32_t pos, Ray& r) { return test(sphere_bvh_.order()[pos], r); });
+        return sphere_bvh_.closest(ray, [&](uint32_t first, uint32_t count, Ray& r) {
+            bool found = false;
+            for (uint32_t pos = first; pos < first + count; ++pos) found |= test(sphere_bvh_.order()[pos], r);
+            return found;
+        });
     bool found = false;
     for (uint32_t prim = 0; prim < spheres_.size(); ++prim) found |= test(prim, ray);
     return found;
@@ -83,21 +113,23 @@ bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
 bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
     if (!is_finite(ray.o) || !is_finite(ray.d)) return false;  // would visit every node for nothing
     Ray r = ray;
-    // A scene of one kind pays nothing for the other (smallpt's box: 6% of its instructions).
-    const bool triangle_hit = !triangles_.empty() && closest_triangle(r, self, hit);
+    // A mesh scene pays nothing for spheres, not even the call, and a sphere scene nothing for
+    // triangles (not even the ray's shear).
+    const bool triangle_hit = !run_slot_.empty() && closest_triangle(r, self, hit);
     return (!spheres_.empty() && closest_sphere(r, self, hit)) || triangle_hit;
 }
 
 bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
     const uint32_t skip = position(self), wanted = position(target);
     const RayShear shear(ray);
-    auto blocks = [&](uint32_t pos, const Ray& r) {
-        TriangleHit unused;
-        return pos != skip && pos != wanted && triangles_[pos].intersect(r, shear, unused);
+    const RunTest run_test(shear);
+    auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) {
+        const unsigned left_out = lane_mask(skip, first, count) | lane_mask(wanted, first, count);
+        return run_test.any(&triangle_runs_[9 * size_t(first)], count, left_out, r);
     };
     if (accelerator_ == Accelerator::bvh) return triangle_bvh_.any(ray, blocks);
-    for (uint32_t pos = 0; pos < triangles_.size(); ++pos)
-        if (blocks(pos, ray)) return true;
+    for (uint32_t pos = 0; pos < run_slot_.size(); ++pos)
+        if (blocks(pos, 1, ray)) return true;
     return false;
 }
 
@@ -107,7 +139,11 @@ bool Geometry::sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) con
         return prim != target && spheres_[prim].intersect(r, prim == self, t);
     };
     if (accelerator_ == Accelerator::bvh)
-        return sphere_bvh_.any(ray, [&](uint32_t pos, const Ray& r) { return blocks(sphere_bvh_.order()[pos], r); });
+        return sphere_bvh_.any(ray, [&](uint32_t first, uint32_t count, const Ray& r) {
+            for (uint32_t pos = first; pos < first + count; ++pos)
+                if (blocks(sphere_bvh_.order()[pos], r)) return true;
+            return false;
+        });
     for (uint32_t prim = 0; prim < spheres_.size(); ++prim)
         if (blocks(prim, ray)) return true;
     return false;
@@ -116,7 +152,7 @@ bool Geometry::sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) con
 bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
     if (!is_finite(ray.o) || !is_finite(ray.d)) return false;
     return (!spheres_.empty() && sphere_blocks(ray, self, target)) ||
-           (!triangles_.empty() && triangle_blocks(ray, self, target));
+           (!run_slot_.empty() && triangle_blocks(ray, self, target));
 }
 
 SurfaceInteraction Geometry::interaction(const Ray& ray, const Hit& hit) const {

@@ -36,11 +36,11 @@ public:
              Accelerator accelerator = Accelerator::automatic);
 
     size_t sphere_count() const { return spheres_.size(); }
-    size_t triangle_count() const { return triangles_.size(); }
-    uint32_t primitive_count() const { return static_cast<uint32_t>(spheres_.size() + triangles_.size()); }
+    size_t triangle_count() const { return run_slot_.size(); }
+    uint32_t primitive_count() const { return static_cast<uint32_t>(spheres_.size() + run_slot_.size()); }
     bool is_sphere(uint32_t prim) const { return prim < spheres_.size(); }
     const Sphere& sphere(uint32_t prim) const { return spheres_[prim]; }
-    Triangle triangle(uint32_t prim) const { return triangles_[position(prim)].unpack(); }
+    Triangle triangle(uint32_t prim) const { return packed(position(prim)).unpack(); }
     uint32_t triangle_id(size_t triangle_index) const {
         return static_cast<uint32_t>(spheres_.size() + triangle_index);
     }
@@ -62,13 +62,24 @@ private:
     // Where triangle `prim` is stored (its position in the tree's order, when there is a tree),
     // or kNoPrimitive when prim is not a triangle.
     uint32_t position(uint32_t prim) const;
+    // The triangle at `pos`: its run's size, its index in the run and where the run starts.
+    uint32_t run_size(uint32_t pos) const { return run_slot_[pos] >> 4; }
+    uint32_t run_index(uint32_t pos) const { return run_slot_[pos] & 15; }
+    size_t run_start(uint32_t pos) const { return 9 * size_t(pos - run_index(pos)); }
+    PackedTriangle packed(uint32_t pos) const {
+        return triangle_run::get(&triangle_runs_[run_start(pos)], run_size(pos), run_index(pos));
+    }
+    void store_runs(const std::vector<PackedTriangle>& packed, const std::vector<uint32_t>& triangle_at);
     bool closest_triangle(Ray& ray, uint32_t self, Hit& hit) const;
     bool closest_sphere(Ray& ray, uint32_t self, Hit& hit) const;
     bool triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
     bool sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
 
     std::vector<Sphere> spheres_;
-    std::vector<PackedTriangle> triangles_;  // in triangle_bvh_'s order when there is a tree
+    // The triangles in triangle_bvh_'s order when there is a tree, each leaf's one run
+    // (triangle_run layout), every other triangle a run of one.
+    std::vector<float> triangle_runs_;
+    std::vector<uint8_t> run_slot_;            // position -> run size << 4 | index in the run
     std::vector<uint32_t> triangle_at_;        // tree position -> triangle index (empty: identity)
     std::vector<uint32_t> position_of_;        // triangle index -> tree position (empty: identity)
     Accelerator accelerator_ = Accelerator::bvh;  // never automatic once built

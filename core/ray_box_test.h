@@ -40,22 +40,26 @@ struct alignas(32) WideBox {
 class RayBoxTest {
 public:
     explicit RayBoxTest(const Ray& ray) {
+        // Rounded four at a time: the origin up, the origin and tmin down, the reciprocals to nearest.
+        alignas(16) float up[4], down[4], inv[4];
+        const __m256d origin_tmin = _mm256_setr_pd(ray.o.x, ray.o.y, ray.o.z, ray.tmin);
+        _mm_store_ps(up, to_float_up(origin_tmin));
+        _mm_store_ps(down, to_float_down(origin_tmin));
+        _mm_store_ps(inv, _mm256_cvtpd_ps(_mm256_div_pd(_mm256_set1_pd(1.0), _mm256_setr_pd(ray.d.x, ray.d.y, ray.d.z, 1.0))));
         for (int a = 0; a < 3; ++a) {
-            const float inv = to_float_nearest(1.0 / ray.d[a]);
-            const bool negative = std::signbit(inv);  // -0 counts as negative, like its -inf
+            const bool negative = std::signbit(inv[a]);  // -0 counts as negative, like its -inf
             near_offset_[a] = kBvhWidth * (2 * a + negative);
             far_offset_[a] = kBvhWidth * (2 * a + !negative);
-            const float up = to_float_up(ray.o[a]), down = to_float_down(ray.o[a]);
-            near_origin_[a] = _mm256_set1_ps(negative ? down : up);
-            far_origin_[a] = _mm256_set1_ps(negative ? up : down);
-            inv_[a] = _mm256_set1_ps(inv);
+            near_origin_[a] = _mm256_set1_ps(negative ? down[a] : up[a]);
+            far_origin_[a] = _mm256_set1_ps(negative ? up[a] : down[a]);
+            inv_[a] = _mm256_set1_ps(inv[a]);
         }
-        tmin_ = _mm256_set1_ps(to_float_down(ray.tmin));
+        tmin_ = _mm256_set1_ps(down[3]);
     }
 
     // Bit i of the result is set when box i overlaps the ray in (tmin, tmax]; `entry` receives
-    // the eight entry distances. `tmax` is the ray's limit rounded up to float.
-    int hit(const WideBox& box, float tmax, __m256& entry) const {
+    // the eight entry distances. `tmax` is the ray's limit rounded up to float, in every lane.
+    int hit(const WideBox& box, __m256 tmax, __m256& entry) const {
         const float* planes = &box.planes[0][0];
         __m256 t_near = _mm256_max_ps(distance(planes, near_offset_[2], near_origin_[2], inv_[2]), tmin_);
         t_near = _mm256_max_ps(distance(planes, near_offset_[1], near_origin_[1], inv_[1]), t_near);
@@ -64,7 +68,7 @@ public:
         __m256 t_far = _mm256_min_ps(distance(planes, far_offset_[2], far_origin_[2], inv_[2]), _mm256_set1_ps(kInfinityF));
         t_far = _mm256_min_ps(distance(planes, far_offset_[1], far_origin_[1], inv_[1]), t_far);
         t_far = _mm256_min_ps(distance(planes, far_offset_[0], far_origin_[0], inv_[0]), t_far);
-        t_far = _mm256_min_ps(_mm256_mul_ps(t_far, _mm256_set1_ps(kPad)), _mm256_set1_ps(tmax));
+        t_far = _mm256_min_ps(_mm256_mul_ps(t_far, _mm256_set1_ps(kPad)), tmax);
         entry = t_near;
         return _mm256_movemask_ps(_mm256_cmp_ps(t_near, t_far, _CMP_LE_OQ));
     }

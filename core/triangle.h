@@ -1,6 +1,9 @@
 // Triangles: a watertight ray test and the surface point it finds.
 #pragma once
 
+#include <immintrin.h>
+
+#include <cstdint>
 #include <utility>
 
 #include "bounds.h"
@@ -135,6 +138,158 @@ struct PackedTriangle {
         const double c[3] = {double(v[2][s.kx]) - s.ox, double(v[2][s.ky]) - s.oy, double(v[2][s.kz]) - s.oz};
         return detail::watertight_test(a, b, c, s, ray, hit);
     }
+};
+
+// Triangles stored run by run, coordinate by coordinate: in a run of n (a BVH leaf, so at most
+// four), coordinate a of vertex j of the run's i-th triangle is at run[(3j + a)·n + i], so that
+// one load fetches that coordinate of all n triangles; a run of one is PackedTriangle's own
+// layout. Still 36 bytes a triangle, with kPadding floats after the last run for the four-wide
+// loads of a shorter run to read.
+namespace triangle_run {
+
+inline constexpr uint32_t kMaxSize = 4;
+inline constexpr size_t kPadding = kMaxSize - 1;
+
+inline PackedTriangle get(const float* run, uint32_t n, uint32_t i) {
+    PackedTriangle p;
+    const float* from = run + i;
+    for (int j = 0; j < 3; ++j)
+        for (int a = 0; a < 3; ++a, from += n) p.v[j][a] = *from;
+    return p;
+}
+
+inline void put(float* run, uint32_t n, uint32_t i, const PackedTriangle& p) {
+    for (int j = 0; j < 3; ++j)
+        for (int a = 0; a < 3; ++a) run[(3 * j + a) * n + i] = p.v[j][a];
+}
+
+}  // namespace triangle_run
+
+// The watertight test of PackedTriangle::intersect for the up to four triangles of a run at
+// once, in AVX double precision, operation for operation the scalar one (nothing fused:
+// CMakeLists.txt turns contraction off), so every value is bit for bit the scalar test's. A run
+// in which some edge function is exactly zero goes to the scalar test, as only it has the
+// long-double tie-break; NaN lanes fail every comparison, as they do in the scalar test.
+class RunTest {
+public:
+    explicit RunTest(const RayShear& s)
+        : axis_{uint32_t(s.kx), uint32_t(s.ky), uint32_t(s.kz)},
+          origin_{_mm256_set1_pd(s.ox), _mm256_set1_pd(s.oy), _mm256_set1_pd(s.oz)},
+          sx_(_mm256_set1_pd(s.sx)),
+          sy_(_mm256_set1_pd(s.sy)),
+          sz_(_mm256_set1_pd(s.sz)),
+          shear_(s) {}
+
+    // The hit that testing the run's triangles in order with PackedTriangle::intersect finds,
+    // shrinking ray.tmax at each hit: the nearest, the last of equals. Lanes in `skip` are left
+    // out. Returns the triangle's index in the run, or -1.
+    [[gnu::always_inline]] int closest(const float* run, uint32_t n, unsigned skip, const Ray& ray, TriangleHit& hit) const {
+        const Lanes l = lanes(run, n, skip);
+        if (l.on_edge != 0) return scalar_closest(run, n, l.inside | l.on_edge, ray, hit);
+        if (l.inside == 0) return -1;
+        alignas(32) double t[4], u[4], v[4], w[4], inv_det[4];
+        unsigned valid = in_range(l, ray, t, inv_det);
+        if (valid == 0) return -1;
+        _mm256_store_pd(u, l.u);
+        _mm256_store_pd(v, l.v);
+        _mm256_store_pd(w, l.w);
+        int best = -1;
+        for (double nearest = ray.tmax; valid != 0; valid &= valid - 1) {
+            const int i = __builtin_ctz(valid);
+            if (t[i] <= nearest) {
+                nearest = t[i];
+                best = i;
+            }
+        }
+        hit = {t[best], u[best] * inv_det[best], v[best] * inv_det[best], w[best] * inv_det[best]};
+        return best;
+    }
+
+    // Whether one of the run's triangles outside `skip` is hit in (ray.tmin, ray.tmax].
+    [[gnu::always_inline]] bool any(const float* run, uint32_t n, unsigned skip, const Ray& ray) const {
+        const Lanes l = lanes(run, n, skip);
+        TriangleHit unused;
+        if (l.on_edge != 0) return scalar_closest(run, n, l.inside | l.on_edge, ray, unused) >= 0;
+        if (l.inside == 0) return false;
+        alignas(32) double t[4], inv_det[4];
+        return in_range(l, ray, t, inv_det) != 0;
+    }
+
+private:
+    struct Lanes {
+        __m256d u, v, w, az, bz, cz;  // edge functions; vertices' distances along the ray's axis
+        unsigned inside;   // all three edge functions nonzero and of one sign
+        unsigned on_edge;  // some edge function exactly zero
+    };
+
+    Lanes lanes(const float* run, uint32_t n, unsigned skip) const {
+        const uint32_t offset[3] = {axis_[0] * n, axis_[1] * n, axis_[2] * n};
+        Lanes l;
+        __m256d a[2], b[2], c[2];
+        sheared(run, offset, a, l.az);
+        sheared(run + 3 * n, offset, b, l.bz);
+        sheared(run + 6 * n, offset, c, l.cz);
+        l.u = _mm256_sub_pd(_mm256_mul_pd(c[0], b[1]), _mm256_mul_pd(c[1], b[0]));
+        l.v = _mm256_sub_pd(_mm256_mul_pd(a[0], c[1]), _mm256_mul_pd(a[1], c[0]));
+        l.w = _mm256_sub_pd(_mm256_mul_pd(b[0], a[1]), _mm256_mul_pd(b[1], a[0]));
+        const unsigned used = ((1u << n) - 1) & ~skip;
+        const unsigned negative = any_compares<_CMP_LT_OQ>(l), positive = any_compares<_CMP_GT_OQ>(l);
+        l.on_edge = any_compares<_CMP_EQ_OQ>(l) & used;
+        l.inside = (negative ^ positive) & used & ~l.on_edge;
+        return l;
+    }
+
+    template <int kCompare>
+    static unsigned any_compares(const Lanes& l) {
+        const __m256d zero = _mm256_setzero_pd();
+        const __m256d any = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(l.u, zero, kCompare), _mm256_cmp_pd(l.v, zero, kCompare)),
+                                         _mm256_cmp_pd(l.w, zero, kCompare));
+        return static_cast<unsigned>(_mm256_movemask_pd(any));
+    }
+
+    // The lanes of `l.inside` whose t lies in (ray.tmin, ray.tmax], with every lane's t and
+    // 1/det stored.
+    unsigned in_range(const Lanes& l, const Ray& ray, double* t, double* inv_det) const {
+        const __m256d det = _mm256_add_pd(_mm256_add_pd(l.u, l.v), l.w);
+        const __m256d tz = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(l.u, _mm256_mul_pd(sz_, l.az)),
+                                                       _mm256_mul_pd(l.v, _mm256_mul_pd(sz_, l.bz))),
+                                         _mm256_mul_pd(l.w, _mm256_mul_pd(sz_, l.cz)));
+        const __m256d inv = _mm256_div_pd(_mm256_set1_pd(1.0), det);
+        const __m256d tv = _mm256_mul_pd(tz, inv);
+        const __m256d ok = _mm256_and_pd(_mm256_cmp_pd(tv, _mm256_set1_pd(ray.tmin), _CMP_GT_OQ),
+                                         _mm256_cmp_pd(tv, _mm256_set1_pd(ray.tmax), _CMP_LE_OQ));
+        _mm256_store_pd(t, tv);
+        _mm256_store_pd(inv_det, inv);
+        return static_cast<unsigned>(_mm256_movemask_pd(ok)) & l.inside;
+    }
+
+    // The scalar tests of the lanes in `lanes`, in order.
+    int scalar_closest(const float* run, uint32_t n, unsigned lanes, const Ray& ray, TriangleHit& hit) const {
+        Ray r = ray;
+        int best = -1;
+        for (; lanes != 0; lanes &= lanes - 1) {
+            const int i = __builtin_ctz(lanes);
+            if (!triangle_run::get(run, n, static_cast<uint32_t>(i)).intersect(r, shear_, hit)) continue;
+            r.tmax = hit.t;
+            best = i;
+        }
+        return best;
+    }
+
+    // One vertex of the run's triangles (its x coordinates at `vertex`, offset[k] floats on
+    // to those along the ray's permuted axis k) relative to the origin: watertight_test's a,
+    // sheared into `xy` (its a2) with its distance along the ray's axis in `z`.
+    void sheared(const float* vertex, const uint32_t offset[3], __m256d xy[2], __m256d& z) const {
+        __m256d p[3];
+        for (int k = 0; k < 3; ++k) p[k] = _mm256_sub_pd(_mm256_cvtps_pd(_mm_loadu_ps(vertex + offset[k])), origin_[k]);
+        xy[0] = _mm256_sub_pd(p[0], _mm256_mul_pd(sx_, p[2]));
+        xy[1] = _mm256_sub_pd(p[1], _mm256_mul_pd(sy_, p[2]));
+        z = p[2];
+    }
+
+    uint32_t axis_[3];
+    __m256d origin_[3], sx_, sy_, sz_;
+    const RayShear& shear_;
 };
 
 }  // namespace glint

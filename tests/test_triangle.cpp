@@ -141,5 +141,63 @@ TEST(Triangle, HitPointsStayWithinTheirErrorBounds) {
     }
 }
 
+// The run test answers as the scalar test of each triangle in turn does: for runs of 2 to 4
+// triangles and rays aimed at random points, at a shared edge and at vertices (from far away
+// too, so that the edge functions are tiny against the coordinates), the same triangle, t and
+// barycentrics bit for bit, the nearest and the last of equals, with a skipped lane left out.
+TEST(Triangle, RunTestAnswersAsTheScalarTestInTurn) {
+    Rng rng(9, 0, 0);
+    auto point = [&] { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 2 - Vec3{1}; };
+    int hits = 0, shared_edge_hits = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        const uint32_t n = 1 + trial % 4;
+        const Vec3 offset = trial % 2 ? Vec3{1e4, -3e3, 7e3} : Vec3{0, 0, 0};
+        std::vector<PackedTriangle> packed;
+        const Vec3 shared_a = point(), shared_b = point();  // an edge the first two triangles share
+        for (uint32_t i = 0; i < n; ++i) {
+            const Triangle t = i < 2 ? Triangle{shared_a + offset, shared_b + offset, point() + offset}
+                                     : Triangle{point() + offset, point() + offset, point() + offset};
+            packed.push_back(PackedTriangle::pack(t));
+        }
+        std::vector<float> run(9 * n + triangle_run::kPadding, std::nanf(""));
+        for (uint32_t i = 0; i < n; ++i) triangle_run::put(run.data(), n, i, packed[i]);
+        // The target: inside a triangle, on the shared edge, or on a vertex, as stored.
+        const Triangle aim = packed[rng.uniform() < 0.5 ? 0 : n - 1].unpack();
+        const double b1 = rng.uniform(), b2 = rng.uniform() * (1 - b1);
+        const int kind = trial % 4;
+        const Vec3 target = kind == 0 ? aim.v0 * (1 - b1 - b2) + aim.v1 * b1 + aim.v2 * b2
+                            : kind == 1 ? aim.v0 * (1 - b1) + aim.v1 * b1
+                            : kind == 2 ? aim.v1
+                                        : aim.v0 + (point() * 1e-9);
+        const Vec3 origin = target + normalize(point()) * (trial % 5 == 0 ? 1e5 : 3.0);
+        const Ray ray{origin, normalize(target - origin), trial % 3 == 0 ? -kInfinity : 0.0, kInfinity};
+        const RayShear shear(ray);
+        const unsigned skip = trial % 7 == 0 ? 1u : 0u;
+        // The scalar tests in turn.
+        Ray r = ray;
+        int expected = -1;
+        TriangleHit expected_hit, hit;
+        for (uint32_t i = 0; i < n; ++i)
+            if (!(skip >> i & 1) && packed[i].intersect(r, shear, hit)) {
+                expected = int(i);
+                expected_hit = hit;
+                r.tmax = hit.t;
+            }
+        TriangleHit got;
+        const RunTest test(shear);
+        ASSERT_EQ(test.closest(run.data(), n, skip, ray, got), expected) << "trial " << trial;
+        EXPECT_EQ(test.any(run.data(), n, skip, ray), expected >= 0) << "trial " << trial;
+        if (expected < 0) continue;
+        ++hits;
+        shared_edge_hits += kind == 1 && expected < 2;
+        EXPECT_EQ(got.t, expected_hit.t);
+        EXPECT_EQ(got.b0, expected_hit.b0);
+        EXPECT_EQ(got.b1, expected_hit.b1);
+        EXPECT_EQ(got.b2, expected_hit.b2);
+    }
+    EXPECT_GT(hits, 2000);
+    EXPECT_GT(shared_edge_hits, 300);
+}
+
 }  // namespace
 }  // namespace glint
