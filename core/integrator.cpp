@@ -141,11 +141,13 @@ Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light) const {
                 if (depth + 1 + light.vertices[i].hits <= settings.max_depth)
                     result += connect(si, ray.d, m, throughput, light.vertices[i], rng);
             if (light_tracing) {
-                const Vec3 from_previous = si.p - previous;
-                if (depth == 0) chain_density = camera_.area_density(si.p, si.n) / kPi;
-                else if (previous_diffuse)
+                if (depth == 0) {
+                    chain_density = camera_.area_density(si.p, si.n) / kPi;
+                } else if (previous_diffuse) {
+                    const Vec3 from_previous = si.p - previous;
                     chain_density = connection_density_over_pi(dot(ray.d, previous_facing), dot(ray.d, si.n),
                                                                dot(from_previous, from_previous));
+                }
                 chain = depth == 0 || previous_diffuse ? 1 : chain > 0 ? chain + 1 : 0;
             }
         }
