@@ -21,6 +21,7 @@ Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& tri
     if (accelerator_ == Accelerator::automatic)
         accelerator_ = spheres_.size() + packed.size() <= kListMaxPrimitives ? Accelerator::list : Accelerator::bvh;
     if (accelerator_ != Accelerator::bvh) {
+        sphere_list_ = SphereList(spheres_);
         store_runs(packed, {});
         return;
     }
@@ -92,6 +93,14 @@ bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
 }
 
 bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
+    if (accelerator_ != Accelerator::bvh) {
+        double t;
+        const int prim = sphere_list_.closest(ray, self, t);
+        if (prim < 0) return false;
+        hit = {t, static_cast<uint32_t>(prim), {}};
+        ray.tmax = t;
+        return true;
+    }
     auto test = [&](uint32_t prim, Ray& r) {
         double t;
         if (!spheres_[prim].intersect(r, prim == self, t)) return false;
@@ -99,15 +108,11 @@ bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
         r.tmax = t;
         return true;
     };
-    if (accelerator_ == Accelerator::bvh)
-        return sphere_bvh_.closest(ray, [&](uint32_t first, uint32_t count, Ray& r) {
-            bool found = false;
-            for (uint32_t pos = first; pos < first + count; ++pos) found |= test(sphere_bvh_.order()[pos], r);
-            return found;
-        });
-    bool found = false;
-    for (uint32_t prim = 0; prim < spheres_.size(); ++prim) found |= test(prim, ray);
-    return found;
+    return sphere_bvh_.closest(ray, [&](uint32_t first, uint32_t count, Ray& r) {
+        bool found = false;
+        for (uint32_t pos = first; pos < first + count; ++pos) found |= test(sphere_bvh_.order()[pos], r);
+        return found;
+    });
 }
 
 bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
@@ -134,19 +139,15 @@ bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) c
 }
 
 bool Geometry::sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
-    auto blocks = [&](uint32_t prim, const Ray& r) {
-        double t;
-        return prim != target && spheres_[prim].intersect(r, prim == self, t);
-    };
-    if (accelerator_ == Accelerator::bvh)
-        return sphere_bvh_.any(ray, [&](uint32_t first, uint32_t count, const Ray& r) {
-            for (uint32_t pos = first; pos < first + count; ++pos)
-                if (blocks(sphere_bvh_.order()[pos], r)) return true;
-            return false;
-        });
-    for (uint32_t prim = 0; prim < spheres_.size(); ++prim)
-        if (blocks(prim, ray)) return true;
-    return false;
+    if (accelerator_ != Accelerator::bvh) return sphere_list_.any(ray, self, target);
+    return sphere_bvh_.any(ray, [&](uint32_t first, uint32_t count, const Ray& r) {
+        for (uint32_t pos = first; pos < first + count; ++pos) {
+            const uint32_t prim = sphere_bvh_.order()[pos];
+            double t;
+            if (prim != target && spheres_[prim].intersect(r, prim == self, t)) return true;
+        }
+        return false;
+    });
 }
 
 bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {

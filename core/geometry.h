@@ -6,6 +6,7 @@
 
 #include "bvh.h"
 #include "sphere.h"
+#include "sphere_list.h"
 #include "triangle.h"
 
 namespace glint {
@@ -76,6 +77,7 @@ private:
     bool sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
 
     std::vector<Sphere> spheres_;
+    SphereList sphere_list_;  // the spheres tested without a tree (Accelerator::list)
     // The triangles in triangle_bvh_'s order when there is a tree, each leaf's one run
     // (triangle_run layout), every other triangle a run of one.
     std::vector<float> triangle_runs_;

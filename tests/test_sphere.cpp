@@ -115,3 +115,59 @@ TEST(Sphere, TangentAndMissingRaysReportNoHit) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// The list's four-lane test must answer as a scalar loop over Sphere::intersect does, bit for
+// bit: seven spheres (a partial last group) from smallpt's walls to a speck, two of them equal
+// (a tie the last must win), rays from random points, from points on the spheres (leaving
+// them), and along the axes.
+TEST(SphereList, AnswersAsTheScalarTestBitForBit) {
+    const std::vector<Sphere> spheres{kWall, {{50, 40.8, -1e5 + 170}, 1e5}, {{27, 16.5, 47}, 16.5},
+                                      {{73, 16.5, 78}, 16.5}, {{73, 16.5, 78}, 16.5}, {{50, 30, 60}, 1e-3},
+                                      {{50, 681.33, 81.6}, 600}};
+    const SphereList list(spheres);
+    Rng rng(7, 0, 0);
+    int hits = 0, self_hits = 0;
+    for (int i = 0; i < 20000; ++i) {
+        Ray ray;
+        uint32_t self = kNoPrimitive;
+        ray.o = Vec3(100 * rng.uniform(), 80 * rng.uniform(), 170 * rng.uniform());
+        if (i % 3 == 1) {
+            self = uint32_t(rng.uniform() * double(spheres.size()));
+            const Sphere& s = spheres[self];
+            ray.o = s.centre + sample_uniform_sphere(rng.uniform(), rng.uniform()) * s.radius;
+        }
+        ray.d = i % 3 == 2 ? Vec3(i % 2 ? 1.0 : -1.0, 0, 0) : sample_uniform_sphere(rng.uniform(), rng.uniform());
+        if (i % 5 == 0) ray.tmax = 100 * rng.uniform();
+        int expected = -1;
+        double expected_t = ray.tmax;
+        for (uint32_t k = 0; k < spheres.size(); ++k) {
+            double t;
+            Ray r = ray;
+            r.tmax = expected_t;
+            if (spheres[k].intersect(r, k == self, t)) expected = int(k), expected_t = t;
+        }
+        double t = -1;
+        const int found = list.closest(ray, self, t);
+        ASSERT_EQ(found, expected) << "ray " << i;
+        if (found >= 0) {
+            ASSERT_EQ(t, expected_t) << "ray " << i;
+            hits += 1;
+            self_hits += found == int(self);
+        }
+        // Occlusion, leaving out the first hit: blocked exactly when another sphere is hit.
+        bool blocked = false;
+        for (uint32_t k = 0; k < spheres.size(); ++k) {
+            double tk;
+            blocked |= int(k) != found && spheres[k].intersect(ray, k == self, tk);
+        }
+        ASSERT_EQ(list.any(ray, self, found < 0 ? kNoPrimitive : uint32_t(found)), blocked) << "ray " << i;
+    }
+    EXPECT_GT(hits, 15000);
+    EXPECT_GT(self_hits, 100);  // rays leaving a sphere into it find its far side
+}
+
+}  // namespace
+}  // namespace glint
