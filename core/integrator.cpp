@@ -5,17 +5,14 @@
 namespace glint {
 namespace {
 
-// The shape of the path so far, for handing caustic paths to light tracing.
-enum class Shape { camera, diffuse, caustic, other };  // caustic: one diffuse, then specular+
-
-Shape extend(Shape shape, bool diffuse) {
+PathShape extend(PathShape shape, bool diffuse) {
     switch (shape) {
-        case Shape::camera: return diffuse ? Shape::diffuse : Shape::other;
-        case Shape::diffuse: return diffuse ? Shape::other : Shape::caustic;
-        case Shape::caustic: return diffuse ? Shape::other : Shape::caustic;
-        case Shape::other: return Shape::other;
+        case PathShape::camera: return diffuse ? PathShape::diffuse : PathShape::other;
+        case PathShape::diffuse: return diffuse ? PathShape::other : PathShape::caustic;
+        case PathShape::caustic: return diffuse ? PathShape::other : PathShape::caustic;
+        case PathShape::other: return PathShape::other;
     }
-    return Shape::other;
+    return PathShape::other;
 }
 
 // Whether y's own sphere hides x: light reached y from inside the sphere and x is outside it.
@@ -97,77 +94,84 @@ double PathTracer::bounce_weight(double density_over_pi, const Ray& ray, const S
 }
 
 Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light) const {
+    PathState path;
+    path.ray = ray;
+    return trace(path, rng, light);
+}
+
+bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, bool diffuse, const BsdfSample& bs,
+                             Rng& rng) const {
+    path.throughput *= bs.weight;
+    if (is_black(path.throughput)) return false;
+    if (path.depth >= scene_.integrator().rr_depth) {
+        const double survive = std::min(1.0, max_component(path.throughput));
+        if (rng.uniform() >= survive) return false;
+        path.throughput *= 1 / survive;
+    }
+    path.shape = extend(path.shape, diffuse);
+    path.specular = bs.specular;
+    path.previous_diffuse = diffuse;
+    path.bsdf_pdf = bs.pdf;
+    path.previous = si.p;
+    path.previous_facing = dot(path.ray.d, si.n) < 0 ? si.n : -si.n;
+    path.self = si.prim;
+    path.ray = spawn_ray(si, bs.wi);
+    ++path.depth;
+    return true;
+}
+
+Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
     const IntegratorSettings& settings = scene_.integrator();
     const bool nee = settings.light_sampling && !scene_.lights().empty();
     const bool light_tracing = scene_.light_tracing();
-    Shape shape = Shape::camera;
-    Rgb result{0}, throughput{1};
-    uint32_t self = kNoPrimitive;
-    bool specular = true;  // the camera "samples" its ray like a specular bounce: no MIS
-    bool previous_diffuse = false;
-    double bsdf_pdf = 0;
-    Vec3 previous, previous_facing;
-    // The path's last diffuse vertices as a light path could have made them: v, then specular+
-    // and diffuse vertices alternating, `chain` diffuse vertices in all (0: none, because v's
-    // predecessor is specular), and the density (over π) with which v's predecessor, the eye
-    // or a diffuse vertex, reaches v. A light path's vertex at v is weighed against that.
-    int chain = 0;
-    double chain_density = 0;
-    for (int depth = 0;; ++depth) {
+    Rgb result{0};
+    for (;; ) {
+        const Ray& ray = path.ray;
         Hit hit;
-        if (!scene_.geometry().intersect(ray, self, hit)) {
-            result += throughput * scene_.background();
+        if (!scene_.geometry().intersect(ray, path.self, hit)) {
+            result += path.throughput * scene_.background();
             break;
         }
         const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
         const Material& m = scene_.material(hit.prim);
         const bool diffuse = m.type == MaterialType::diffuse;
-        const bool traced_from_light = light_tracing && shape == Shape::caustic &&
-                                       scene_.caustic_emitter().covers(hit.prim, si.p, self);
+        const bool traced_from_light = light_tracing && path.shape == PathShape::caustic &&
+                                       scene_.caustic_emitter().covers(hit.prim, si.p, path.self);
         if (m.is_emissive() && !traced_from_light) {
             // Emission found by BSDF sampling; where NEE or a light path could also have
             // found it, MIS-weight it.
             double w = 1;
-            if (nee && !specular)
-                w = power_heuristic(bsdf_pdf, scene_.lights().pdf(previous, self, si, previous_facing));
-            else if (light_tracing && specular && chain > 0 && chain <= kLightVertices)
-                w = bounce_weight(chain_density, ray, si, self);
-            result += throughput * m.emission * w;
+            if (nee && !path.specular)
+                w = power_heuristic(path.bsdf_pdf, scene_.lights().pdf(path.previous, path.self, si, path.previous_facing));
+            else if (light_tracing && path.specular && path.chain > 0 && path.chain <= kLightVertices)
+                w = bounce_weight(path.chain_density, ray, si, path.self);
+            result += path.throughput * m.emission * w;
         }
-        if (depth + 1 >= settings.max_depth) break;
+        if (path.depth + 1 >= settings.max_depth) break;
         if (diffuse) {
-            if (nee) result += direct_light(si, ray.d, m, throughput, rng);
+            if (nee) result += direct_light(si, ray.d, m, path.throughput, rng);
             for (int i = 0; i < light.size; ++i)
-                if (depth + 1 + light.vertices[i].hits <= settings.max_depth)
-                    result += connect(si, ray.d, m, throughput, light.vertices[i], rng);
+                if (path.depth + 1 + light.vertices[i].hits <= settings.max_depth)
+                    result += connect(si, ray.d, m, path.throughput, light.vertices[i], rng);
             if (light_tracing) {
-                if (depth == 0) {
-                    chain_density = camera_.area_density(si.p, si.n) / kPi;
-                } else if (previous_diffuse) {
-                    const Vec3 from_previous = si.p - previous;
-                    chain_density = connection_density_over_pi(dot(ray.d, previous_facing), dot(ray.d, si.n),
-                                                               dot(from_previous, from_previous));
+                if (path.depth == 0) {
+                    path.chain_density = camera_.area_density(si.p, si.n) / kPi;
+                } else if (path.previous_diffuse) {
+                    const Vec3 from_previous = si.p - path.previous;
+                    path.chain_density = connection_density_over_pi(dot(ray.d, path.previous_facing), dot(ray.d, si.n),
+                                                                    dot(from_previous, from_previous));
                 }
-                chain = depth == 0 || previous_diffuse ? 1 : chain > 0 ? chain + 1 : 0;
+                path.chain = path.depth == 0 || path.previous_diffuse ? 1 : path.chain > 0 ? path.chain + 1 : 0;
             }
         }
-
-        const BsdfSample bs = sample_bsdf(m, ray.d, si.n, rng);
-        throughput *= bs.weight;
-        if (is_black(throughput)) break;
-        if (depth >= settings.rr_depth) {
-            const double survive = std::min(1.0, max_component(throughput));
-            if (rng.uniform() >= survive) break;
-            throughput *= 1 / survive;
+        BsdfSample bs, reflected;
+        if (m.type == MaterialType::glass && path.depth < kSplitDepth && split_glass(m, ray.d, si.n, reflected, bs)) {
+            PathState branch = path;
+            if (extend_path(branch, si, diffuse, reflected, rng)) result += trace(branch, rng, light);
+        } else {
+            bs = sample_bsdf(m, ray.d, si.n, rng);
         }
-        shape = extend(shape, diffuse);
-        specular = bs.specular;
-        previous_diffuse = diffuse;
-        bsdf_pdf = bs.pdf;
-        previous = si.p;
-        previous_facing = dot(ray.d, si.n) < 0 ? si.n : -si.n;
-        self = hit.prim;
-        ray = spawn_ray(si, bs.wi);
+        if (!extend_path(path, si, diffuse, bs, rng)) break;
     }
     return result;
 }

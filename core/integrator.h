@@ -17,6 +17,9 @@
 
 namespace glint {
 
+// The shape of a camera path so far, for handing caustic paths to light tracing.
+enum class PathShape { camera, diffuse, caustic, other };  // caustic: one diffuse, then specular+
+
 class PathTracer {
 public:
     PathTracer(const Scene& scene, const Camera& camera) : scene_(scene), camera_(camera) {}
@@ -26,6 +29,33 @@ public:
     Rgb radiance(Ray ray, Rng& rng, const LightPath& light = {}) const;
 
 private:
+    // Where a path is: its next ray, what it carries, the vertex it leaves and how it got there.
+    struct PathState {
+        Ray ray;
+        Rgb throughput{1};
+        int depth = 0;
+        uint32_t self = kNoPrimitive;
+        PathShape shape = PathShape::camera;
+        bool specular = true;  // the camera "samples" its ray like a specular bounce: no MIS
+        bool previous_diffuse = false;
+        double bsdf_pdf = 0;
+        Vec3 previous, previous_facing;
+        // The path's last diffuse vertices as a light path could have made them: v, then
+        // specular+ and diffuse vertices alternating, `chain` diffuse vertices in all (0: none,
+        // because v's predecessor is specular), and the density (over π) with which v's
+        // predecessor, the eye or a diffuse vertex, reaches v. A light path's vertex at v is
+        // weighed against that.
+        int chain = 0;
+        double chain_density = 0;
+    };
+    // Glass met in the first kSplitDepth bounces is split: both the reflection and the
+    // refraction are followed, each weighted by its Fresnel factor, where smallpt's random pick
+    // makes the light's images in a glass ball speckle (see bench/BENCHMARKS.md).
+    static constexpr int kSplitDepth = 2;
+    Rgb trace(PathState path, Rng& rng, const LightPath& light) const;
+    // Moves the path on from si along bs (false: it ends there, by Russian roulette or a black
+    // throughput).
+    bool extend_path(PathState& path, const SurfaceInteraction& si, bool diffuse, const BsdfSample& bs, Rng& rng) const;
     // Both next strategies end in a shadow ray, and most of their contributions are small: one
     // worth less than kShadowRoulette (a tenth of white on the display) is tested only with
     // probability worth / kShadowRoulette and then counted 1/probability times, which keeps the

@@ -28,6 +28,9 @@ struct BsdfSample {
 
 // d: the incoming ray's direction; n: the unit geometric normal (either side).
 BsdfSample sample_bsdf(const Material& m, const Vec3& d, const Vec3& n, Rng& rng);
+// Glass split into both continuations, each weighted by its Fresnel factor (Re and 1 - Re),
+// instead of picking one: false under total internal reflection, where there is one.
+bool split_glass(const Material& m, const Vec3& d, const Vec3& n, BsdfSample& reflected, BsdfSample& refracted);
 
 // Lambertian reflection f·cos for light arriving along wi at a surface hit from direction d
 // (0 when wi is on the other side), and the pdf with which sample_bsdf would pick wi.

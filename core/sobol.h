@@ -11,14 +11,16 @@
 
 namespace glint {
 
-// Dimension 0: the van der Corput sequence, i's bits reversed.
-inline uint32_t sobol_dimension0(uint32_t i) {
+inline uint32_t reverse_bits(uint32_t i) {
     i = (i << 16) | (i >> 16);
     i = ((i & 0x00FF00FFu) << 8) | ((i & 0xFF00FF00u) >> 8);
     i = ((i & 0x0F0F0F0Fu) << 4) | ((i & 0xF0F0F0F0u) >> 4);
     i = ((i & 0x33333333u) << 2) | ((i & 0xCCCCCCCCu) >> 2);
     return ((i & 0x55555555u) << 1) | ((i & 0xAAAAAAAAu) >> 1);
 }
+
+// Dimension 0: the van der Corput sequence, i's bits reversed.
+inline uint32_t sobol_dimension0(uint32_t i) { return reverse_bits(i); }
 
 // Dimension 1: primitive polynomial x + 1, direction numbers v_k = v_(k-1) xor v_(k-1)/2.
 inline uint32_t sobol_dimension1(uint32_t i) {
@@ -28,16 +30,24 @@ inline uint32_t sobol_dimension1(uint32_t i) {
     return result;
 }
 
-// Nested uniform scrambling: bit b (from the top) is flipped or not by a random choice that
-// depends on the key and on every bit above it, i.e. on the dyadic interval the point is in.
+// Nested scrambling in the manner of Laine and Karras (2011): in bit-reversed order, where the
+// point's top bit is the lowest, adding and multiplying carry only upwards, so each bit of the
+// result is flipped by a function of the key and of the bits below it, i.e. of the dyadic
+// interval the point lies in: the scramble is nested, and every elementary interval keeps its
+// one point. Adding the key's low word first makes each point exactly uniform over keys (the
+// rest are bijections). The multipliers are glint's own (SplitMix64 outputs; the even ones
+// xor-shift, the odd one from the key permutes). About 20 instructions, against 32 hashes
+// for a scramble that draws every bit's flip afresh; which flips it draws is less random, and
+// what that costs is measured in bench/BENCHMARKS.md.
 inline uint32_t owen_scramble(uint32_t x, uint64_t key) {
-    uint32_t out = x;
-    for (int level = 0; level < 32; ++level) {
-        const int bit = 31 - level;
-        const uint64_t above = level == 0 ? 0 : uint64_t(x >> (bit + 1));
-        out ^= uint32_t(mix64(key ^ ((above << 6) | uint64_t(level))) & 1) << bit;
-    }
-    return out;
+    constexpr uint32_t m1 = uint32_t(mix64(1)) & ~1u, m2 = uint32_t(mix64(2)) & ~1u, m3 = uint32_t(mix64(3)) & ~1u;
+    uint32_t v = reverse_bits(x);
+    v += uint32_t(key);
+    v ^= v * m1;
+    v *= uint32_t(key >> 32) | 1u;
+    v ^= v * m2;
+    v ^= v * m3;
+    return reverse_bits(v);
 }
 
 // Point i of the 2D sequence with scrambling key `key`, each coordinate in [0, 1).

@@ -58,6 +58,25 @@ TEST(Materials, GlassObeysSnellAndConservesEnergyAtEveryAngle) {
     }
 }
 
+TEST(Materials, SplitGlassFollowsBothDirectionsWithFresnelWeightsThatSumToTheAlbedo) {
+    Rng rng(34, 0, 0);
+    for (bool outside : {true, false})
+        for (double angle : {0.0, 30.0, 41.0, 80.0}) {
+            const Vec3 d = incoming_at(angle, outside);
+            BsdfSample reflected, refracted;
+            const bool split = split_glass(glass(0.9), d, kUp, reflected, refracted);
+            ASSERT_EQ(split, outside || angle < 41.5) << angle;  // beyond ~41.8° inside: total reflection
+            if (!split) continue;
+            EXPECT_NEAR(reflected.weight.x + refracted.weight.x, 0.9, 1e-15) << angle;
+            EXPECT_GT(refracted.weight.x, reflected.weight.x) << angle;
+            // The directions are the two that sampling picks between.
+            for (int i = 0; i < 64; ++i) {
+                const BsdfSample s = sample_bsdf(glass(0.9), d, kUp, rng);
+                EXPECT_TRUE(s.wi == reflected.wi || s.wi == refracted.wi) << angle;
+            }
+        }
+}
+
 TEST(Materials, GrazingIncidenceOnGlassMostlyReflects) {
     Rng rng(33, 0, 0);
     const Vec3 d = incoming_at(89.999, true);

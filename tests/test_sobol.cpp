@@ -49,3 +49,27 @@ TEST(Sobol, KeysScrambleDifferentlyAndTheMeanIsAHalf) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// Over keys, a fixed point must be uniform in every top-level stratum, not only on average:
+// the eighths of [0, 1) in each coordinate, and the 4x4 cells of the square, each get their
+// share (a scramble that left a high bit to the index would empty half of them).
+TEST(Sobol, AFixedPointIsUniformOverKeysInEveryCoarseCell) {
+    const int keys = 32000;
+    for (uint32_t index : {0u, 5u, 1000u}) {
+        std::vector<int> cells(16), eighths(8);
+        for (int k = 0; k < keys; ++k) {
+            double u1, u2;
+            sobol_2d(index, mix64(uint64_t(k)), u1, u2);
+            ++cells[size_t(u1 * 4) * 4 + size_t(u2 * 4)];
+            ++eighths[size_t(u1 * 8)];
+        }
+        for (int c : cells) EXPECT_NEAR(c, keys / 16, 5 * std::sqrt(keys / 16.0)) << "index " << index;
+        for (int c : eighths) EXPECT_NEAR(c, keys / 8, 5 * std::sqrt(keys / 8.0)) << "index " << index;
+    }
+}
+
+}  // namespace
+}  // namespace glint
