@@ -2,6 +2,8 @@
 
 #include "sampling.h"
 
+#include <utility>
+
 namespace glint {
 namespace {
 
@@ -44,8 +46,8 @@ bool survives_roulette(Rgb& value, double threshold, Rng& rng) {
 }  // namespace
 
 Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, const Rgb& beta,
-                             Rng& rng) const {
-    const double u_pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+                             double u1, double u2, Rng& rng) const {
+    const double u_pick = rng.uniform();
     LightSample ls;
     const Vec3 facing = dot(d, si.n) < 0 ? si.n : -si.n;
     if (!scene_.lights().sample(si.p, si.prim, u_pick, u1, u2, ls, facing)) return Rgb{0};
@@ -93,9 +95,10 @@ double PathTracer::bounce_weight(double density_over_pi, const Ray& ray, const S
     return 1 - LightTracer::light_side_weight(density_over_pi, cos_out / pdf);
 }
 
-Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light) const {
+Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light, const FirstVertexSamples* first) const {
     PathState path;
     path.ray = ray;
+    path.first = first;
     return trace(path, rng, light);
 }
 
@@ -148,8 +151,12 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
             result += path.throughput * m.emission * w;
         }
         if (path.depth + 1 >= settings.max_depth) break;
+        const FirstVertexSamples* first = diffuse ? std::exchange(path.first, nullptr) : nullptr;
+        if (diffuse && nee) {
+            const double u1 = first ? first->light[0] : rng.uniform(), u2 = first ? first->light[1] : rng.uniform();
+            result += direct_light(si, ray.d, m, path.throughput, u1, u2, rng);
+        }
         if (diffuse) {
-            if (nee) result += direct_light(si, ray.d, m, path.throughput, rng);
             for (int i = 0; i < light.size; ++i)
                 if (path.depth + 1 + light.vertices[i].hits <= settings.max_depth)
                     result += connect(si, ray.d, m, path.throughput, light.vertices[i], rng);
@@ -169,7 +176,7 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
             PathState branch = path;
             if (extend_path(branch, si, diffuse, reflected, rng)) result += trace(branch, rng, light);
         } else {
-            bs = sample_bsdf(m, ray.d, si.n, rng);
+            bs = first ? sample_diffuse(m, ray.d, si.n, first->bounce[0], first->bounce[1]) : sample_bsdf(m, ray.d, si.n, rng);
         }
         if (!extend_path(path, si, diffuse, bs, rng)) break;
     }

@@ -20,13 +20,22 @@ namespace glint {
 // The shape of a camera path so far, for handing caustic paths to light tracing.
 enum class PathShape { camera, diffuse, caustic, other };  // caustic: one diffuse, then specular+
 
+// Random numbers for the first diffuse vertex of a camera path, drawn from scrambled Sobol'
+// points so that they are stratified over a pixel's samples (see RenderJob::sample): the light
+// sample there and the direction of the bounce from it.
+struct FirstVertexSamples {
+    double light[2];
+    double bounce[2];
+};
+
 class PathTracer {
 public:
     PathTracer(const Scene& scene, const Camera& camera) : scene_(scene), camera_(camera) {}
 
     // Radiance arriving along the camera ray, estimated with random numbers from rng; `light`
-    // is this sample's light path (empty when the scene has no light tracing).
-    Rgb radiance(Ray ray, Rng& rng, const LightPath& light = {}) const;
+    // is this sample's light path (empty when the scene has no light tracing); `first`, if
+    // given, the numbers the path's first diffuse vertex uses instead of rng's.
+    Rgb radiance(Ray ray, Rng& rng, const LightPath& light = {}, const FirstVertexSamples* first = nullptr) const;
 
 private:
     // Where a path is: its next ray, what it carries, the vertex it leaves and how it got there.
@@ -47,6 +56,7 @@ private:
         // weighed against that.
         int chain = 0;
         double chain_density = 0;
+        const FirstVertexSamples* first = nullptr;  // until the first diffuse vertex has used them
     };
     // Glass met in the first kSplitDepth bounces is split: both the reflection and the
     // refraction are followed, each weighted by its Fresnel factor, where smallpt's random pick
@@ -63,7 +73,9 @@ private:
     static constexpr double kShadowRoulette = 0.1;
     // Light arriving from one sampled light point at si (reached along d with throughput beta),
     // times f·cos, MIS-weighted against BSDF sampling.
-    Rgb direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, const Rgb& beta, Rng& rng) const;
+    // (u1, u2) pick the point on the light.
+    Rgb direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, const Rgb& beta, double u1,
+                     double u2, Rng& rng) const;
     // What reaches the eye through diffuse vertex x (reached along d with throughput beta)
     // from light vertex y, MIS-weighted against the path tracer's bounces.
     Rgb connect(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta, const LightVertex& y,

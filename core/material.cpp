@@ -7,12 +7,6 @@ namespace {
 
 Vec3 reflect(const Vec3& d, const Vec3& n) { return d - n * (2 * dot(n, d)); }
 
-BsdfSample sample_diffuse(const Material& m, const Vec3& facing, Rng& rng) {
-    const double u1 = rng.uniform(), u2 = rng.uniform();
-    const Vec3 local = sample_cosine_hemisphere(u1, u2);
-    return {Frame::around(facing).to_world(local), m.albedo, local.z / kPi, false};
-}
-
 // smallpt's dielectric: Schlick's Fresnel reflectance `re` of the two directions, or total
 // internal reflection (no refracted direction).
 struct Dielectric {
@@ -50,6 +44,11 @@ BsdfSample sample_glass(const Material& m, const Vec3& d, const Vec3& n, const V
 
 }  // namespace
 
+BsdfSample sample_diffuse(const Material& m, const Vec3& d, const Vec3& n, double u1, double u2) {
+    const Vec3 local = sample_cosine_hemisphere(u1, u2);
+    return {Frame::around(dot(n, d) < 0 ? n : -n).to_world(local), m.albedo, local.z / kPi, false};
+}
+
 bool split_glass(const Material& m, const Vec3& d, const Vec3& n, BsdfSample& reflected, BsdfSample& refracted) {
     const Dielectric g = dielectric(m, d, n, dot(n, d) < 0 ? n : -n);
     if (g.total_internal) return false;
@@ -61,7 +60,10 @@ bool split_glass(const Material& m, const Vec3& d, const Vec3& n, BsdfSample& re
 BsdfSample sample_bsdf(const Material& m, const Vec3& d, const Vec3& n, Rng& rng) {
     const Vec3 facing = dot(n, d) < 0 ? n : -n;  // the normal on the side the ray came from
     switch (m.type) {
-        case MaterialType::diffuse: return sample_diffuse(m, facing, rng);
+        case MaterialType::diffuse: {
+            const double u1 = rng.uniform(), u2 = rng.uniform();
+            return sample_diffuse(m, d, n, u1, u2);
+        }
         case MaterialType::mirror: return {reflect(d, facing), m.albedo, 0, true};
         case MaterialType::glass: return sample_glass(m, d, n, facing, rng);
     }

@@ -28,6 +28,8 @@ struct BsdfSample {
 
 // d: the incoming ray's direction; n: the unit geometric normal (either side).
 BsdfSample sample_bsdf(const Material& m, const Vec3& d, const Vec3& n, Rng& rng);
+// Cosine-weighted reflection from (u1, u2) in [0, 1)², on the side d came from.
+BsdfSample sample_diffuse(const Material& m, const Vec3& d, const Vec3& n, double u1, double u2);
 // Glass split into both continuations, each weighted by its Fresnel factor (Re and 1 - Re),
 // instead of picking one: false under total internal reflection, where there is one.
 bool split_glass(const Material& m, const Vec3& d, const Vec3& n, BsdfSample& reflected, BsdfSample& refracted);
