@@ -8,8 +8,8 @@
 // scrambled sequence's round means can see that. That share is largest where the film position
 // decides most of the error: on the Cornell box at 32×24, whose pixels each span much of an edge
 // or of the light, it makes the estimate 1.99× the measured error (2.04× per sample; with
-// independent film positions the same estimate measures 0.94×). At 256×192 and 16 spp it is
-// 1.31× (1.44× per sample). The mesh scene, whose error is the light transport's, measures 0.96×.
+// independent film positions the same estimate measures 0.94×). At 256×192 and 64 spp it is
+// 1.39× (1.56× per sample). The mesh scene, whose error is the light transport's, measures 0.96×.
 #include <gtest/gtest.h>
 
 #include "test_support.h"
