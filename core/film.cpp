@@ -62,15 +62,18 @@ Image Film::mean() const {
     return image;
 }
 
+// With r rounds of k samples, round sums S and round means S/k: the rounds' sample variance is
+// (ΣS² − (ΣS)²/r) / (k²·(r − 1)), and the pixel's mean, the mean of the round means, has that
+// divided by r.
 double Film::error_estimate() const {
     double total = 0;
     const double spp = samples_per_pixel();
     for (const PixelSums& px : pixels_) {
-        if (px.count < 2) return kInfinity;  // no variance without two samples
-        const double n = double(px.count);
+        if (px.rounds < 2) return kInfinity;  // no variance without two rounds
+        const double r = double(px.rounds), k = double(px.count) / r;
         for (int c = 0; c < 3; ++c) {
-            const double variance = std::max(0.0, (px.sum_sq[c] - px.sum[c] * px.sum[c] / n) / (n - 1));
-            total += variance / n + splat_variance(px, c, spp);
+            const double spread = std::max(0.0, px.round_sq[c] - px.sum[c] * px.sum[c] / r);
+            total += spread / (k * k * (r - 1) * r) + splat_variance(px, c, spp);
         }
     }
     return std::sqrt(total / (3.0 * double(pixels_.size())));
@@ -81,8 +84,9 @@ void Film::merge(const Film& other) {
         PixelSums& px = pixels_[i];
         const PixelSums& o = other.pixels_[i];
         px.sum += o.sum;
-        px.sum_sq += o.sum_sq;
+        px.round_sq += o.round_sq;
         px.count += o.count;
+        px.rounds += o.rounds;
         px.dropped += o.dropped;
         for (int c = 0; c < 3; ++c) {
             px.splat[c] += o.splat[c];

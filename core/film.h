@@ -1,5 +1,9 @@
-// Per-pixel accumulation: the sum and the sum of squares of the sample values and their count,
-// so the mean image and an estimate of its error are available at any moment. Light tracing
+// Per-pixel accumulation, one round of samples at a time (a round covers the pixel's strata once:
+// the tent filter's 2×2 subpixels): the sum of the samples and their count for the mean image,
+// and the sum of squares of the rounds' sums for an estimate of its error. The error comes from
+// whole rounds because the samples within one are stratified: their spread is largely the
+// difference between subpixels, which every round's mean contains alike, so it is no noise in
+// the pixel's mean. Light tracing
 // adds splats: contributions a light path makes to pixels other than the one whose sample
 // traced it, from any thread. They are summed in 64-bit fixed point, because integer sums do
 // not depend on the order of the additions: the image stays bit-identical whatever the thread
@@ -9,6 +13,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "image.h"
@@ -16,9 +21,11 @@
 namespace glint {
 
 struct PixelSums {
-    Rgb sum{0}, sum_sq{0};
-    uint64_t count = 0;
-    uint64_t dropped = 0;  // samples that came out NaN or infinite and were left out
+    Rgb sum{0};           // of the samples of the rounds kept
+    Rgb round_sq{0};      // of the squares of the rounds' sums
+    uint64_t count = 0;   // samples in the rounds kept
+    uint64_t rounds = 0;  // rounds kept
+    uint64_t dropped = 0;  // samples left out: every sample of a round with a NaN or infinite one
     std::array<int64_t, 3> splat{}, splat_sq{};  // fixed point, see Film::kSplatScale
     uint64_t splats_dropped = 0;                 // non-finite or out of the fixed-point range
 };
@@ -30,17 +37,25 @@ public:
     int width() const { return width_; }
     int height() const { return height_; }
 
-    // Adds one sample to pixel (x, y) (y = 0 is the top row). A sample with a NaN or infinite
-    // component is dropped and counted instead: it would poison the pixel forever.
-    void add(int x, int y, const Rgb& value) {
+    // Adds one round of samples to pixel (x, y) (y = 0 is the top row); every round of a pixel
+    // has the same size. A round with a NaN or infinite component in any sample is dropped
+    // whole and its samples counted instead: such a sample would poison the pixel forever, and
+    // keeping the rest of its round would weigh the other strata more than its own.
+    void add_round(int x, int y, std::span<const Rgb> samples) {
         PixelSums& px = pixels_[size_t(y) * width_ + x];
-        if (!is_finite(value)) {
-            ++px.dropped;
-            return;
+        for (const Rgb& value : samples)
+            if (!is_finite(value)) {
+                px.dropped += samples.size();
+                return;
+            }
+        Rgb round{0};
+        for (const Rgb& value : samples) {
+            px.sum += value;
+            round += value;
         }
-        px.sum += value;
-        px.sum_sq += value * value;
-        ++px.count;
+        px.round_sq += round * round;
+        px.count += samples.size();
+        ++px.rounds;
     }
     // Adds a light-tracing splat to pixel (x, y); thread-safe. `value` is the light path's
     // contribution divided by the number of pixels, so that the splats of one light path per
@@ -64,7 +79,9 @@ public:
     // The mean of each pixel's samples (0 where it has none yet).
     Image mean() const;
     // Estimated RMSE of mean() against the converged image, in the image's own (linear) units:
-    // sqrt of the average over pixels and channels of the sample variance divided by the count.
+    // sqrt of the average over pixels and channels of the variance of the pixel's mean, which is
+    // the sample variance of its rounds' means divided by the number of rounds (plus the
+    // splats'). Infinite until every pixel has two rounds.
     double error_estimate() const;
     uint64_t dropped() const;
 

@@ -15,6 +15,7 @@ namespace glint {
 enum class Filter { tent, box };
 
 inline uint32_t samples_per_round(Filter f) { return f == Filter::tent ? 4 : 1; }
+constexpr uint32_t kMaxSamplesPerRound = 4;
 
 // Film offset within the pixel (0 at its left or bottom edge) of sample `index` along one axis;
 // `subpixel` is 0 or 1 (smallpt's sx or sy).

@@ -12,8 +12,8 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "partial files are little-endian");
 constexpr char kMagic[8] = {'G', 'L', 'N', 'T', 'P', 'A', 'R', 'T'};
-constexpr uint32_t kVersion = 2;
-constexpr size_t kHeader = 40, kPixel = 120, kTrailer = 8;
+constexpr uint32_t kVersion = 3;
+constexpr size_t kHeader = 40, kPixel = 128, kTrailer = 8;
 
 class Writer {
 public:
@@ -47,6 +47,15 @@ uint64_t checksum(const uint8_t* data, size_t size) {
     return h.digest();
 }
 
+void check_version(uint32_t version) {
+    if (version == kVersion) return;
+    if (version > 0 && version < kVersion)  // its sums of squares are per sample: no per-round variance
+        throw PartialError("partial file version " + std::to_string(version) + " is from an older glint, which kept " +
+                           "the error per sample; this one reads version " + std::to_string(kVersion) +
+                           ": render the part again");
+    throw PartialError("unsupported partial file version " + std::to_string(version));
+}
+
 std::string range(const Partial& p) {
     return "[" + std::to_string(p.first_sample) + ", " + std::to_string(p.end_sample) + ")";
 }
@@ -66,8 +75,9 @@ std::vector<uint8_t> encode_partial(const Partial& p) {
     w.put(p.fingerprint);
     for (const PixelSums& px : p.film.pixels()) {
         for (int c = 0; c < 3; ++c) w.put(px.sum[c]);
-        for (int c = 0; c < 3; ++c) w.put(px.sum_sq[c]);
+        for (int c = 0; c < 3; ++c) w.put(px.round_sq[c]);
         w.put(px.count);
+        w.put(px.rounds);
         w.put(px.dropped);
         for (int c = 0; c < 3; ++c) w.put(px.splat[size_t(c)]);
         for (int c = 0; c < 3; ++c) w.put(px.splat_sq[size_t(c)]);
@@ -88,7 +98,7 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
         throw PartialError("checksum mismatch: the file is corrupt or truncated");
     Reader r(bytes);
     r.get<uint64_t>();  // magic
-    if (r.get<uint32_t>() != kVersion) throw PartialError("unsupported partial file version");
+    check_version(r.get<uint32_t>());
     const auto width = r.get<uint32_t>(), height = r.get<uint32_t>();
     // Divides rather than multiplies: 64·W·H overflows 64 bits for W = H = 2^31.
     const size_t body = bytes.size() - kHeader - kTrailer, pixels = body / kPixel;
@@ -106,8 +116,9 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
     p.film = Film(int(width), int(height));
     for (PixelSums& px : p.film.pixels()) {
         for (int c = 0; c < 3; ++c) px.sum[c] = r.get<double>();
-        for (int c = 0; c < 3; ++c) px.sum_sq[c] = r.get<double>();
+        for (int c = 0; c < 3; ++c) px.round_sq[c] = r.get<double>();
         px.count = r.get<uint64_t>();
+        px.rounds = r.get<uint64_t>();
         px.dropped = r.get<uint64_t>();
         for (int c = 0; c < 3; ++c) px.splat[size_t(c)] = r.get<int64_t>();
         for (int c = 0; c < 3; ++c) px.splat_sq[size_t(c)] = r.get<int64_t>();

@@ -1,20 +1,21 @@
 // Partial renders: the per-pixel sums of samples [first, end) of a job, written by
 // `glint render --samples A:B --partial FILE` and combined by `glint merge`.
 //
-// Format (version 2, little-endian, no padding):
+// Format (version 3, little-endian, no padding; version 2 kept sums of the samples' squares,
+// which version 3 replaces with the rounds' counts and sums of squares, see film.h):
 //   offset  size  field
 //   0       8     magic "GLNTPART"
-//   8       4     uint32 version = 2
+//   8       4     uint32 version = 3
 //   12      4     uint32 width
 //   16      4     uint32 height
 //   20      4     uint32 first sample (inclusive)
 //   24      4     uint32 end sample (exclusive)
 //   28      4     uint32 PNG encoding (0 gamma 2.2, 1 sRGB)
 //   32      8     uint64 fingerprint of scene and settings (core/fingerprint.h)
-//   40      120·W·H per pixel, rows top to bottom: float64 sum r, g, b; float64 sum of squares
-//                 r, g, b; uint64 sample count; uint64 dropped (non-finite) samples; int64
-//                 light-tracing splat sums r, g, b and sums of squares r, g, b (fixed point,
-//                 see film.h); uint64 dropped splats
+//   40      128·W·H per pixel, rows top to bottom: float64 sum r, g, b; float64 sum of the
+//                 rounds' sums' squares r, g, b; uint64 sample count; uint64 round count; uint64
+//                 dropped samples; int64 light-tracing splat sums r, g, b and sums of squares
+//                 r, g, b (fixed point, see film.h); uint64 dropped splats
 //   end-8   8     uint64 FNV-1a of every byte before it
 #pragma once
 

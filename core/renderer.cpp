@@ -1,5 +1,7 @@
 #include "renderer.h"
 
+#include <array>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -68,9 +70,15 @@ bool RenderJob::render_tile(size_t tile, uint32_t first, uint32_t last) {
     if (should_stop()) return false;
     const int x0 = int(tile % tiles_x_) * kTileSize, y0 = int(tile / tiles_x_) * kTileSize;
     const int x1 = std::min(x0 + kTileSize, settings_.width), y1 = std::min(y0 + kTileSize, settings_.height);
+    // A round at a time: the film takes the error estimate's variance from whole rounds.
+    const uint32_t round = samples_per_round(settings_.filter);
+    std::array<Rgb, kMaxSamplesPerRound> values;
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x)
-            for (uint32_t s = first; s < last; ++s) film_.add(x, y, sample(x, y, s));
+            for (uint32_t s = first; s < last; s += round) {
+                for (uint32_t i = 0; i < round; ++i) values[i] = sample(x, y, s + i);
+                film_.add_round(x, y, std::span(values.data(), round));
+            }
     return true;
 }
 

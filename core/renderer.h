@@ -37,7 +37,7 @@ struct Progress {
     double seconds = 0;
     double samples_per_second = 0;
     double error_estimate = kInfinity;
-    uint64_t dropped = 0;  // non-finite samples left out
+    uint64_t dropped = 0;  // samples left out: whole rounds with a NaN or infinite sample
 };
 
 enum class StopReason { completed, target_error, time_limit, cancelled };
@@ -57,8 +57,9 @@ public:
     // run(); throws std::invalid_argument if the film or the count does not fit this job.
     void resume(Film film, uint32_t spp_done);
 
-    // Samples [first, last) of every pixel, added to the film in sample order. Returns false
-    // if the job was stopped (cancelled or out of time) before every tile was rendered.
+    // Samples [first, last) of every pixel, added to the film in sample order, a round at a time
+    // (both multiples of samples_per_round). Returns false if the job was stopped (cancelled or
+    // out of time) before every tile was rendered.
     bool render_pass(ThreadPool& pool, uint32_t first, uint32_t last);
 
     const Film& film() const { return film_; }

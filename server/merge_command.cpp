@@ -27,7 +27,8 @@ int run_merge(const MergeOptions& o) {
         const Image image = merged.film.mean();
         write_file(o.output, encode_png(image, merged.encoding));
         if (!o.hdr.empty()) write_file(o.hdr, encode_pfm(image));
-        std::printf("%s: %zu parts, samples [%u, %u) at %dx%d, estimated RMSE %.4g, %llu non-finite samples dropped\n",
+        std::printf("%s: %zu parts, samples [%u, %u) at %dx%d, estimated RMSE %.4g, "
+                    "%llu samples dropped (rounds with a non-finite one)\n",
                     o.output.c_str(), o.parts.size(), merged.first_sample, merged.end_sample, merged.film.width(),
                     merged.film.height(), merged.film.error_estimate(),
                     static_cast<unsigned long long>(merged.film.dropped()));

@@ -105,7 +105,8 @@ int render_scene(const RenderOptions& o, const std::string& scene, const Outputs
         return 1;
     }
     const Progress p = job.progress();
-    std::printf("%s: %s; %u spp at %dx%d in %.2f s, %.3g samples/s, estimated RMSE %.4g, %llu non-finite samples dropped\n",
+    std::printf("%s: %s; %u spp at %dx%d in %.2f s, %.3g samples/s, estimated RMSE %.4g, "
+                "%llu samples dropped (rounds with a non-finite one)\n",
                 (out.png.empty() ? out.partial : out.png).c_str(), to_string(reason), p.spp_done, job.settings().width,
                 job.settings().height, p.seconds, p.samples_per_second, p.error_estimate,
                 static_cast<unsigned long long>(p.dropped));

@@ -1,4 +1,5 @@
-// The film: sums, the error estimate's formula, and samples that are NaN or infinite.
+// The film: sums, the error estimate's formula from whole rounds, and samples that are NaN or
+// infinite.
 #include <gtest/gtest.h>
 
 #include "film.h"
@@ -7,36 +8,56 @@
 namespace glint {
 namespace {
 
-TEST(Film, DropsAndCountsNonFiniteSamples) {
+void add_round(Film& film, int x, int y, const std::vector<Rgb>& samples) { film.add_round(x, y, samples); }
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN(), kInf = std::numeric_limits<double>::infinity();
+
+TEST(Film, DropsAndCountsWholeRoundsWithANonFiniteSample) {
     Film film(2, 1);
-    film.add(0, 0, Rgb{1});
-    film.add(0, 0, Rgb{std::numeric_limits<double>::quiet_NaN(), 0, 0});
-    film.add(0, 0, Rgb{0, std::numeric_limits<double>::infinity(), 0});
-    film.add(0, 0, Rgb{3});
-    film.add(1, 0, Rgb{0, 0, -std::numeric_limits<double>::infinity()});
-    EXPECT_EQ(film.dropped(), 3u);
+    add_round(film, 0, 0, {Rgb{1}, Rgb{3}});
+    add_round(film, 0, 0, {Rgb{5}, Rgb{kNaN, 0, 0}});  // the 5 goes too: its round is incomplete
+    add_round(film, 0, 0, {Rgb{0, kInf, 0}, Rgb{7}});
+    add_round(film, 1, 0, {Rgb{0, 0, -kInf}, Rgb{1}});
+    EXPECT_EQ(film.dropped(), 6u);
     EXPECT_EQ(film.pixel(0, 0).count, 2u);
+    EXPECT_EQ(film.pixel(0, 0).rounds, 1u);
+    EXPECT_EQ(film.samples_per_pixel(), 4.0);  // dropped samples were taken: light paths were traced
     const Image image = film.mean();
     EXPECT_EQ(image.at(0, 0), Rgb{2});
     EXPECT_EQ(image.at(1, 0), Rgb{0});  // no samples yet: black, not NaN
     for (float v : image.rgb) EXPECT_TRUE(std::isfinite(v));
 }
 
-TEST(Film, ErrorEstimateIsTheStandardErrorOfEachPixelMean) {
+TEST(Film, ErrorEstimateIsTheStandardErrorOfThePixelMeanFromItsRounds) {
     Film film(2, 1);
-    // Pixel 0 channel values {0, 2}: sample variance 2, variance of the mean 1.
-    // Pixel 1: {1, 1}: variance 0. Average over 6 channel values of 1,1,1,0,0,0 = 0.5.
-    film.add(0, 0, Rgb{0});
-    film.add(0, 0, Rgb{2});
-    film.add(1, 0, Rgb{1});
-    film.add(1, 0, Rgb{1});
+    // Pixel 0: rounds {0, 4} and {0, 4}: the round means agree (2 and 2), so the mean has no
+    // error, although the samples spread (the spread of stratified samples within a round).
+    // Pixel 1: rounds {0, 2} and {2, 4}: round means 1 and 3, variance 2, of the mean 1.
+    // Average over 6 channel values of 0,0,0,1,1,1 = 0.5. (Per sample it would be 4/3 and 2/3.)
+    add_round(film, 0, 0, {Rgb{0}, Rgb{4}});
+    add_round(film, 0, 0, {Rgb{0}, Rgb{4}});
+    add_round(film, 1, 0, {Rgb{0}, Rgb{2}});
+    add_round(film, 1, 0, {Rgb{2}, Rgb{4}});
     EXPECT_DOUBLE_EQ(film.error_estimate(), std::sqrt(0.5));
+    // Merged from films of one round each, the film is the same.
+    Film first(2, 1), second(2, 1);
+    add_round(first, 0, 0, {Rgb{0}, Rgb{4}});
+    add_round(second, 0, 0, {Rgb{0}, Rgb{4}});
+    add_round(first, 1, 0, {Rgb{0}, Rgb{2}});
+    add_round(second, 1, 0, {Rgb{2}, Rgb{4}});
+    first.merge(second);
+    EXPECT_DOUBLE_EQ(first.error_estimate(), std::sqrt(0.5));
 }
 
-TEST(Film, ErrorEstimateIsInfiniteUntilEveryPixelHasTwoSamples) {
-    Film film(1, 1);
-    film.add(0, 0, Rgb{1});
+TEST(Film, ErrorEstimateIsInfiniteUntilEveryPixelHasTwoRounds) {
+    Film film(2, 1);
+    add_round(film, 0, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}});
+    add_round(film, 1, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}});
+    EXPECT_TRUE(std::isinf(film.error_estimate()));  // four samples, but one round
+    add_round(film, 0, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}});
     EXPECT_TRUE(std::isinf(film.error_estimate()));
+    add_round(film, 1, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}});
+    EXPECT_EQ(film.error_estimate(), 0);
 }
 
 TEST(Film, SplatsAddExactlyInAnyOrderAndDivideByTheSamplesPerPixel) {
@@ -48,10 +69,7 @@ TEST(Film, SplatsAddExactlyInAnyOrderAndDivideByTheSamplesPerPixel) {
     EXPECT_EQ(forward.pixel(1, 0).splat, backward.pixel(1, 0).splat);
     // Two camera samples per pixel: the splats are an estimate over 2 light paths per pixel.
     for (Film* f : {&forward, &backward})
-        for (int x = 0; x < 2; ++x) {
-            f->add(x, 0, Rgb{1});
-            f->add(x, 0, Rgb{1});
-        }
+        for (int x = 0; x < 2; ++x) add_round(*f, x, 0, {Rgb{1}, Rgb{1}});
     const Image image = forward.mean();
     EXPECT_NEAR(image.at(1, 0).x, 1 + (1e-3 + 0.1 + 0.7 + 3e-5 + 0.25) / 2, 1e-6);
     EXPECT_EQ(image.at(0, 0), Rgb{1});
@@ -60,10 +78,10 @@ TEST(Film, SplatsAddExactlyInAnyOrderAndDivideByTheSamplesPerPixel) {
 
 TEST(Film, NonFiniteSplatsAreDroppedAndCounted) {
     Film film(1, 1);
-    film.splat(0, 0, Rgb{std::numeric_limits<double>::infinity(), 0, 0});
-    film.splat(0, 0, Rgb{0, std::numeric_limits<double>::quiet_NaN(), 0});
+    film.splat(0, 0, Rgb{kInf, 0, 0});
+    film.splat(0, 0, Rgb{0, kNaN, 0});
     film.splat(0, 0, Rgb{1e300});  // beyond the fixed-point range
-    film.add(0, 0, Rgb{0.5});
+    add_round(film, 0, 0, {Rgb{0.5}});
     EXPECT_EQ(film.dropped(), 3u);
     EXPECT_EQ(film.mean().at(0, 0), Rgb{0.5});
 }

@@ -45,10 +45,15 @@ TEST(Partial, ThreePartsMergeIntoTheWholeRender) {
     for (size_t i = 0; i < merged.film.pixels().size(); ++i) {
         const PixelSums &a = whole->film().pixels()[i], &b = merged.film.pixels()[i];
         ASSERT_EQ(a.count, b.count);
-        for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(a.rounds, b.rounds);
+        for (int c = 0; c < 3; ++c) {
             if (a.sum[c] != 0) worst = std::max(worst, std::fabs(a.sum[c] - b.sum[c]) / std::fabs(a.sum[c]));
+            if (a.round_sq[c] != 0)
+                worst = std::max(worst, std::fabs(a.round_sq[c] - b.round_sq[c]) / std::fabs(a.round_sq[c]));
+        }
     }
     EXPECT_LT(worst, 1e-14);
+    EXPECT_NEAR(merged.film.error_estimate(), whole->film().error_estimate(), 1e-9 * whole->film().error_estimate());
     // After the mean is rounded to float and to 8 bits, the images are the same bytes.
     EXPECT_EQ(encode_pfm(merged.film.mean()), encode_pfm(whole->film().mean()));
     EXPECT_EQ(encode_png(merged.film.mean(), Encoding::gamma22), encode_png(whole->film().mean(), Encoding::gamma22));
@@ -121,6 +126,19 @@ TEST(Partial, RefusesUnknownEncodingsAndSizesThatOverflow) {
     huge.resize(48);
     EXPECT_EQ(decode_error(with_checksum(huge)), "size does not match the header");
     EXPECT_EQ(decode_error(good), "no error");
+}
+
+// Version 2 kept the sum of the samples' squares, from which no per-round variance follows.
+TEST(Partial, RefusesOlderVersionsSayingWhy) {
+    Partial p;
+    p.end_sample = 4;
+    std::vector<uint8_t> old = encode_partial(p);
+    put(old, 8, uint32_t(2));
+    EXPECT_EQ(decode_error(with_checksum(old)),
+              "partial file version 2 is from an older glint, which kept the error per sample; this one reads version 3: "
+              "render the part again");
+    put(old, 8, uint32_t(4));
+    EXPECT_EQ(decode_error(with_checksum(old)), "unsupported partial file version 4");
 }
 
 TEST(Partial, FingerprintsDependOnWhatDecidesPixels) {

@@ -77,6 +77,21 @@ TEST(Renderer, StopsAtTheTargetError) {
     EXPECT_LE(job->film().error_estimate(), 0.2);
 }
 
+// The error estimate rests on it: a round of the tent filter is its four subpixels, one sample
+// each, and the film must see them as one.
+TEST(Renderer, AddsSamplesToTheFilmInWholeRounds) {
+    LoadedScene s = small_cornell(12);
+    s.settings.width = s.settings.height = 4;
+    for (const auto& [filter, rounds] : {std::pair{Filter::tent, 3u}, std::pair{Filter::box, 12u}}) {
+        s.settings.filter = filter;
+        const auto job = testing::render(s);
+        for (const PixelSums& px : job->film().pixels()) {
+            EXPECT_EQ(px.count, 12u);
+            EXPECT_EQ(px.rounds, rounds);
+        }
+    }
+}
+
 TEST(Renderer, TentFilterRoundsSampleCountsUpToWholeSubpixelRounds) {
     LoadedScene s = small_cornell(5);
     EXPECT_EQ(RenderJob(s.scene, s.settings).settings().spp, 8u);
