@@ -47,12 +47,16 @@ uint64_t checksum(const uint8_t* data, size_t size) {
     return h.digest();
 }
 
-void check_version(uint32_t version) {
-    if (version == kVersion) return;
-    if (version > 0 && version < kVersion)  // its sums of squares are per sample: no per-round variance
-        throw PartialError("partial file version " + std::to_string(version) + " is from an older glint, which kept " +
-                           "the error per sample; this one reads version " + std::to_string(kVersion) +
-                           ": render the part again");
+// Version 2 kept each pixel's sum of its samples' squares where version 3 keeps its rounds'
+// (120 bytes a pixel against 128). Its samples are read as rounds of one: the image is the same,
+// and the error estimate is the per-sample one that version wrote it with (an overestimate, see
+// film.h), so that nothing an older glint rendered is lost by an upgrade.
+constexpr uint32_t kPerSampleVersion = 2;
+constexpr size_t kPerSamplePixel = 120;
+
+size_t pixel_size(uint32_t version) {
+    if (version == kVersion) return kPixel;
+    if (version == kPerSampleVersion) return kPerSamplePixel;
     throw PartialError("unsupported partial file version " + std::to_string(version));
 }
 
@@ -98,11 +102,12 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
         throw PartialError("checksum mismatch: the file is corrupt or truncated");
     Reader r(bytes);
     r.get<uint64_t>();  // magic
-    check_version(r.get<uint32_t>());
+    const auto version = r.get<uint32_t>();
+    const size_t pixel_bytes = pixel_size(version);
     const auto width = r.get<uint32_t>(), height = r.get<uint32_t>();
     // Divides rather than multiplies: 64·W·H overflows 64 bits for W = H = 2^31.
-    const size_t body = bytes.size() - kHeader - kTrailer, pixels = body / kPixel;
-    if (width == 0 || height == 0 || width > uint32_t(INT32_MAX) || body % kPixel != 0 || pixels % width != 0 ||
+    const size_t body = bytes.size() - kHeader - kTrailer, pixels = body / pixel_bytes;
+    if (width == 0 || height == 0 || width > uint32_t(INT32_MAX) || body % pixel_bytes != 0 || pixels % width != 0 ||
         pixels / width != height)
         throw PartialError("size does not match the header");
     Partial p;
@@ -118,7 +123,7 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
         for (int c = 0; c < 3; ++c) px.sum[c] = r.get<double>();
         for (int c = 0; c < 3; ++c) px.round_sq[c] = r.get<double>();
         px.count = r.get<uint64_t>();
-        px.rounds = r.get<uint64_t>();
+        px.rounds = version == kPerSampleVersion ? px.count : r.get<uint64_t>();
         px.dropped = r.get<uint64_t>();
         for (int c = 0; c < 3; ++c) px.splat[size_t(c)] = r.get<int64_t>();
         for (int c = 0; c < 3; ++c) px.splat_sq[size_t(c)] = r.get<int64_t>();

@@ -2,7 +2,8 @@
 // `glint render --samples A:B --partial FILE` and combined by `glint merge`.
 //
 // Format (version 3, little-endian, no padding; version 2 kept sums of the samples' squares,
-// which version 3 replaces with the rounds' counts and sums of squares, see film.h):
+// which version 3 replaces with the rounds' counts and sums of squares, see film.h; it is still
+// read, see partial_file.cpp):
 //   offset  size  field
 //   0       8     magic "GLNTPART"
 //   8       4     uint32 version = 3

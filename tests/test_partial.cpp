@@ -128,17 +128,34 @@ TEST(Partial, RefusesUnknownEncodingsAndSizesThatOverflow) {
     EXPECT_EQ(decode_error(good), "no error");
 }
 
-// Version 2 kept the sum of the samples' squares, from which no per-round variance follows.
-TEST(Partial, RefusesOlderVersionsSayingWhy) {
-    Partial p;
-    p.end_sample = 4;
-    std::vector<uint8_t> old = encode_partial(p);
-    put(old, 8, uint32_t(2));
-    EXPECT_EQ(decode_error(with_checksum(old)),
-              "partial file version 2 is from an older glint, which kept the error per sample; this one reads version 3: "
-              "render the part again");
-    put(old, 8, uint32_t(4));
-    EXPECT_EQ(decode_error(with_checksum(old)), "unsupported partial file version 4");
+// Version 2 kept the sum of the samples' squares: an upgrade must still read it (a server's
+// store holds such files), as rounds of one sample, which is the estimate it was written with.
+TEST(Partial, ReadsVersionTwoAsRoundsOfOneSample) {
+    std::vector<uint8_t> v2(40 + 120 + 8);
+    const char magic[] = "GLNTPART";
+    std::copy(magic, magic + 8, v2.begin());
+    put(v2, 8, uint32_t(2));
+    put(v2, 12, uint32_t(1));   // width
+    put(v2, 16, uint32_t(1));   // height
+    put(v2, 24, uint32_t(8));   // end sample
+    put(v2, 40, 6.0);           // sum r
+    put(v2, 64, 10.0);          // sum of squares r
+    put(v2, 88, uint64_t(8));   // count
+    put(v2, 96, uint64_t(1));   // dropped
+    put(v2, 104, int64_t(5));   // splat r
+    put(v2, 152, uint64_t(2));  // splats dropped
+    const Partial p = decode_partial(with_checksum(v2));
+    const PixelSums& px = p.film.pixel(0, 0);
+    EXPECT_EQ(px.sum[0], 6.0);
+    EXPECT_EQ(px.round_sq[0], 10.0);
+    EXPECT_EQ(px.count, 8u);
+    EXPECT_EQ(px.rounds, 8u);
+    EXPECT_EQ(px.dropped, 1u);
+    EXPECT_EQ(px.splat[0], 5);
+    EXPECT_EQ(px.splats_dropped, 2u);
+    EXPECT_EQ(p.end_sample, 8u);
+    put(v2, 8, uint32_t(4));
+    EXPECT_EQ(decode_error(with_checksum(v2)), "unsupported partial file version 4");
 }
 
 TEST(Partial, FingerprintsDependOnWhatDecidesPixels) {
