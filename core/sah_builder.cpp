@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
 
 namespace glint {
 namespace {
@@ -55,19 +56,20 @@ struct SseBox {
     }
 };
 
-// A primitive's box and its bin along each axis in the node being split, which the binning
-// pass leaves for the partition. 48 bytes: the centre is recomputed rather than stored, as the
-// build streams these through the cache once per level.
 // A bin's box, left uninitialised until the node's binning sets it up.
 union LazyBox {
     SseBox box;
     LazyBox() {}
 };
 
+// A primitive's box and its bin along each axis in the node being split, which the binning
+// pass leaves for the partition (the fourth byte is unused; the four are stored as one word).
+// 48 bytes: the centre is recomputed rather than stored, as the build streams these through the
+// cache once per level.
 struct BuildPrim {
     SseBox box;
     uint32_t index;
-    std::array<uint8_t, 3> bin;
+    std::array<uint8_t, 4> bin;
     __m128 centre() const { return box.centre(); }
 };
 static_assert(sizeof(BuildPrim) == 48);
@@ -87,11 +89,10 @@ public:
     }
     int count() const { return count_; }
     bool splittable(int axis) const { return splittable_[axis]; }
-    std::array<int, 3> bins(__m128 centre) const {
-        alignas(16) int32_t b[4];
+    // The bin along each axis in lanes 0..2.
+    __m128i bins(__m128 centre) const {
         const __m128i bin = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(centre, lo_), scale_));
-        _mm_store_si128(reinterpret_cast<__m128i*>(b), _mm_min_epi32(bin, _mm_set1_epi32(count_ - 1)));
-        return {b[0], b[1], b[2]};
+        return _mm_min_epi32(bin, _mm_set1_epi32(count_ - 1));
     }
 
 private:
@@ -157,51 +158,84 @@ private:
         build(left + 1, mid, end, depth + 1);
     }
 
+    // The bins of one node along all three axes: per bin, a box for each axis and the three
+    // axes' counts side by side, so the sweeps handle the three axes at once.
+    struct Bins {
+        std::array<std::array<LazyBox, 3>, kBins> boxes;  // [bin][axis]
+        alignas(16) std::array<std::array<uint32_t, 4>, kBins> counts;  // [bin][axis], lane 3 is 0
+        __m128i count(int bin) const { return _mm_load_si128(reinterpret_cast<const __m128i*>(counts[bin].data())); }
+    };
+
     // One pass over the primitives fills the bins of all three axes and notes each
     // primitive's bins; the cost is the unnormalised SAH sum.
     Split best_sah_split(uint32_t begin, uint32_t end, const Binning& binning) {
         // Only the bins in use are set up: clearing all of them cost more than binning small nodes.
-        std::array<std::array<LazyBox, kBins>, 3> bins;
-        std::array<std::array<uint32_t, kBins>, 3> counts;
-        for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < binning.count(); ++b) {
-                bins[a][b].box = SseBox{};
-                counts[a][b] = 0;
-            }
+        Bins bins;
+        for (int b = 0; b < binning.count(); ++b) {
+            for (LazyBox& box : bins.boxes[b]) box.box = SseBox{};
+            bins.counts[b] = {};
+        }
+        // The low byte of each lane, packed into one word.
+        const __m128i low_bytes = _mm_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
         for (uint32_t i = begin; i < end; ++i) {
             BuildPrim& p = prims_[i];
-            const std::array<int, 3> b = binning.bins(p.centre());
+            const __m128i lanes = binning.bins(p.centre());
+            const uint32_t word = static_cast<uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi8(lanes, low_bytes)));
+            std::memcpy(p.bin.data(), &word, sizeof word);
             for (int a = 0; a < 3; ++a) {
-                bins[a][b[a]].box.extend(p.box);
-                ++counts[a][b[a]];
-                p.bin[a] = static_cast<uint8_t>(b[a]);
+                bins.boxes[p.bin[a]][a].box.extend(p.box);
+                ++bins.counts[p.bin[a]][a];
             }
         }
-        Split best;
-        for (int axis = 0; axis < 3; ++axis)
-            if (binning.splittable(axis)) best_split_along(axis, binning.count(), bins[axis], counts[axis], end - begin, best);
-        return best;
+        return best_split(bins, binning, end - begin);
     }
 
-    // Sweeps from the right to get each split's right-hand cost, then from the left.
-    static void best_split_along(int axis, int bin_count, const std::array<LazyBox, kBins>& bins,
-                                 const std::array<uint32_t, kBins>& counts, uint32_t total, Split& best) {
-        std::array<float, kBins> right_cost{};
-        SseBox acc;
-        uint32_t n = 0;
+    // The half areas of three boxes, one per lane (0 for an empty box).
+    static __m128 half_areas(const std::array<SseBox, 3>& boxes) {
+        __m128 x = _mm_sub_ps(boxes[0].hi, boxes[0].lo), y = _mm_sub_ps(boxes[1].hi, boxes[1].lo);
+        __m128 z = _mm_sub_ps(boxes[2].hi, boxes[2].lo), w = _mm_setzero_ps();
+        _MM_TRANSPOSE4_PS(x, y, z, w);  // now x, y, z hold the extents along x, y, z of boxes 0..2
+        const __m128 area = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, y), _mm_mul_ps(y, z)), _mm_mul_ps(z, x));
+        return _mm_andnot_ps(_mm_cmplt_ps(x, _mm_setzero_ps()), area);
+    }
+
+    // Sweeps from the right to get each split's right-hand cost, then from the left, the three
+    // axes in the lanes of one register. Ties go to the lower axis, then to the lower bin.
+    static Split best_split(const Bins& bins, const Binning& binning, uint32_t total) {
+        const int bin_count = binning.count();
+        alignas(16) std::array<std::array<float, 4>, kBins> right_cost;
+        std::array<SseBox, 3> acc;
+        __m128i n = _mm_setzero_si128();
         for (int b = bin_count - 1; b > 0; --b) {
-            acc.extend(bins[b].box);
-            n += counts[b];
-            right_cost[b] = acc.half_area() * float(n);
+            for (int a = 0; a < 3; ++a) acc[a].extend(bins.boxes[b][a].box);
+            n = _mm_add_epi32(n, bins.count(b));
+            _mm_store_ps(right_cost[b].data(), _mm_mul_ps(half_areas(acc), _mm_cvtepi32_ps(n)));
         }
-        acc = SseBox{};
-        n = 0;
+        acc = {};
+        n = _mm_setzero_si128();
+        const __m128i all = _mm_set1_epi32(static_cast<int>(total));
+        __m128 best_cost = _mm_set1_ps(std::numeric_limits<float>::infinity());
+        __m128i best_bin = _mm_setzero_si128();
         for (int b = 0; b < bin_count - 1; ++b) {
-            acc.extend(bins[b].box);
-            n += counts[b];
-            const float cost = acc.half_area() * float(n) + right_cost[b + 1];
-            if (n > 0 && n < total && cost < best.cost) best = {axis, b + 1, cost};
+            for (int a = 0; a < 3; ++a) acc[a].extend(bins.boxes[b][a].box);
+            n = _mm_add_epi32(n, bins.count(b));
+            const __m128 cost =
+                _mm_add_ps(_mm_mul_ps(half_areas(acc), _mm_cvtepi32_ps(n)), _mm_load_ps(right_cost[b + 1].data()));
+            // Both sides hold primitives (0 < n < total) and the cost is lower than the best so far.
+            const __m128 both_sides = _mm_castsi128_ps(
+                _mm_and_si128(_mm_cmpgt_epi32(n, _mm_setzero_si128()), _mm_cmplt_epi32(n, all)));
+            const __m128 better = _mm_and_ps(both_sides, _mm_cmplt_ps(cost, best_cost));
+            best_cost = _mm_blendv_ps(best_cost, cost, better);
+            best_bin = _mm_blendv_epi8(best_bin, _mm_set1_epi32(b + 1), _mm_castps_si128(better));
         }
+        alignas(16) float costs[4];
+        alignas(16) int32_t first_right[4];
+        _mm_store_ps(costs, best_cost);
+        _mm_store_si128(reinterpret_cast<__m128i*>(first_right), best_bin);
+        Split best;
+        for (int a = 0; a < 3; ++a)
+            if (binning.splittable(a) && costs[a] < best.cost) best = {a, first_right[a], costs[a]};
+        return best;
     }
 
     uint32_t median_split(uint32_t begin, uint32_t end, const SseBox& centres) {
