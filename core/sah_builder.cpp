@@ -131,15 +131,14 @@ private:
         }
         (*nodes_)[node].box = bounds.to_float_box();
         const uint32_t count = end - begin;
+        const float leaf_cost = float(count);
+        // A split costs at least the traversal step: a node of no more primitives than that is a
+        // leaf without a look at its bins.
+        if (leaf_cost <= kTraversalCost) return make_leaf(node, begin, count);
         const Binning binning(centres, count);
         const Split split = depth < kSahDepth ? best_sah_split(begin, end, binning) : Split{};
-        const float leaf_cost = float(count);
         const float split_cost = kTraversalCost + split.cost / bounds.half_area();
-        if (count == 1 || (count <= BinaryTree::kMaxLeafSize && leaf_cost <= split_cost)) {
-            (*nodes_)[node].first = begin;
-            (*nodes_)[node].count = count;
-            return;
-        }
+        if (count <= BinaryTree::kMaxLeafSize && leaf_cost <= split_cost) return make_leaf(node, begin, count);
         uint32_t mid = begin;
         if (split.axis >= 0) {
             const auto first_right =
@@ -156,6 +155,11 @@ private:
         nodes_->push_back({});
         build(left, begin, mid, depth + 1);
         build(left + 1, mid, end, depth + 1);
+    }
+
+    void make_leaf(uint32_t node, uint32_t begin, uint32_t count) {
+        (*nodes_)[node].first = begin;
+        (*nodes_)[node].count = count;
     }
 
     // The bins of one node along all three axes: per bin, a box for each axis and the three
