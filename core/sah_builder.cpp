@@ -74,29 +74,31 @@ struct BuildPrim {
 };
 static_assert(sizeof(BuildPrim) == 48);
 
-// Maps centres to bins along all three axes at once.
+// Maps centres to bins along all three axes at once. It takes a primitive's lo + hi, twice its
+// centre, and maps it as the centre itself would be mapped: halving is exact, so the halves are
+// folded into the constants and bins come out bit for bit the same.
 class Binning {
 public:
     Binning(const SseBox& centres, uint32_t count)
-        : lo_(centres.lo), count_(count >= kManyPrimitives ? kBins : std::min(kFewBins, int(count))) {
+        : lo_(_mm_add_ps(centres.lo, centres.lo)), count_(count >= kManyPrimitives ? kBins : std::min(kFewBins, int(count))) {
         alignas(16) float extent[4], scale[4] = {};
         _mm_store_ps(extent, _mm_sub_ps(centres.hi, centres.lo));
         for (int a = 0; a < 3; ++a) {
             splittable_[a] = extent[a] > 0;
-            scale[a] = splittable_[a] ? float(count_) / extent[a] : 0;
+            scale[a] = splittable_[a] ? float(count_) / extent[a] * 0.5f : 0;
         }
-        scale_ = _mm_load_ps(scale);
+        half_scale_ = _mm_load_ps(scale);
     }
     int count() const { return count_; }
     bool splittable(int axis) const { return splittable_[axis]; }
     // The bin along each axis in lanes 0..2.
-    __m128i bins(__m128 centre) const {
-        const __m128i bin = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(centre, lo_), scale_));
+    __m128i bins(const SseBox& box) const {
+        const __m128i bin = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(_mm_add_ps(box.lo, box.hi), lo_), half_scale_));
         return _mm_min_epi32(bin, _mm_set1_epi32(count_ - 1));
     }
 
 private:
-    __m128 lo_, scale_;
+    __m128 lo_, half_scale_;  // twice the lowest centre; half the bins per unit of length
     int count_;
     bool splittable_[3];
 };
@@ -162,13 +164,14 @@ private:
         (*nodes_)[node].count = count;
     }
 
-    // The bins of one node along all three axes: per bin, a box for each axis and the three
-    // axes' counts side by side, so the sweeps handle the three axes at once.
-    struct Bins {
-        std::array<std::array<LazyBox, 3>, kBins> boxes;  // [bin][axis]
-        alignas(16) std::array<std::array<uint32_t, 4>, kBins> counts;  // [bin][axis], lane 3 is 0
-        __m128i count(int bin) const { return _mm_load_si128(reinterpret_cast<const __m128i*>(counts[bin].data())); }
+    // One bin along all three axes: a box and a count for each. 128 bytes, so a bin's offset is
+    // its index shifted, and the axes' boxes and counts lie at fixed offsets from there.
+    struct alignas(128) Bin {
+        std::array<LazyBox, 3> boxes;
+        std::array<uint32_t, 4> counts;  // lane 3 is 0
+        __m128i count() const { return _mm_load_si128(reinterpret_cast<const __m128i*>(counts.data())); }
     };
+    using Bins = std::array<Bin, kBins>;
 
     // One pass over the primitives fills the bins of all three axes and notes each
     // primitive's bins; the cost is the unnormalised SAH sum.
@@ -176,19 +179,19 @@ private:
         // Only the bins in use are set up: clearing all of them cost more than binning small nodes.
         Bins bins;
         for (int b = 0; b < binning.count(); ++b) {
-            for (LazyBox& box : bins.boxes[b]) box.box = SseBox{};
-            bins.counts[b] = {};
+            for (LazyBox& box : bins[b].boxes) box.box = SseBox{};
+            bins[b].counts = {};
         }
         // The low byte of each lane, packed into one word.
         const __m128i low_bytes = _mm_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
         for (uint32_t i = begin; i < end; ++i) {
             BuildPrim& p = prims_[i];
-            const __m128i lanes = binning.bins(p.centre());
-            const uint32_t word = static_cast<uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi8(lanes, low_bytes)));
+            const uint32_t word = static_cast<uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi8(binning.bins(p.box), low_bytes)));
             std::memcpy(p.bin.data(), &word, sizeof word);
             for (int a = 0; a < 3; ++a) {
-                bins.boxes[p.bin[a]][a].box.extend(p.box);
-                ++bins.counts[p.bin[a]][a];
+                Bin& bin = bins[(word >> (8 * a)) & 0xff];
+                bin.boxes[a].box.extend(p.box);
+                ++bin.counts[a];
             }
         }
         return best_split(bins, binning, end - begin);
@@ -211,8 +214,8 @@ private:
         std::array<SseBox, 3> acc;
         __m128i n = _mm_setzero_si128();
         for (int b = bin_count - 1; b > 0; --b) {
-            for (int a = 0; a < 3; ++a) acc[a].extend(bins.boxes[b][a].box);
-            n = _mm_add_epi32(n, bins.count(b));
+            for (int a = 0; a < 3; ++a) acc[a].extend(bins[b].boxes[a].box);
+            n = _mm_add_epi32(n, bins[b].count());
             _mm_store_ps(right_cost[b].data(), _mm_mul_ps(half_areas(acc), _mm_cvtepi32_ps(n)));
         }
         acc = {};
@@ -221,8 +224,8 @@ private:
         __m128 best_cost = _mm_set1_ps(std::numeric_limits<float>::infinity());
         __m128i best_bin = _mm_setzero_si128();
         for (int b = 0; b < bin_count - 1; ++b) {
-            for (int a = 0; a < 3; ++a) acc[a].extend(bins.boxes[b][a].box);
-            n = _mm_add_epi32(n, bins.count(b));
+            for (int a = 0; a < 3; ++a) acc[a].extend(bins[b].boxes[a].box);
+            n = _mm_add_epi32(n, bins[b].count());
             const __m128 cost =
                 _mm_add_ps(_mm_mul_ps(half_areas(acc), _mm_cvtepi32_ps(n)), _mm_load_ps(right_cost[b + 1].data()));
             // Both sides hold primitives (0 < n < total) and the cost is lower than the best so far.
