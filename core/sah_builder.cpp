@@ -17,6 +17,8 @@ namespace {
 constexpr int kBins = 32;
 constexpr int kFewBins = 16;
 constexpr uint32_t kManyPrimitives = 1024;
+// Primitives binned per block (see best_sah_split).
+constexpr uint32_t kBinningBlock = 32;
 // Relative to one primitive test. Measured on the eight-wide tree (callgrind, Sponza's diffuse
 // rays; bytes from `glint trace-rays`): 1 gives the fewest instructions but half-empty nodes
 // (bunny 89.6 B/triangle, above Embree's 85); 2 costs 1.3% more instructions for 22% less
@@ -174,8 +176,11 @@ private:
     };
     using Bins = std::array<Bin, kBins>;
 
-    // One pass over the primitives fills the bins of all three axes and notes each
-    // primitive's bins; the cost is the unnormalised SAH sum.
+    // The primitives fill the bins of all three axes and note their bins; the cost is the
+    // unnormalised SAH sum. Block by block, the bins are found first and filled after: neighbours
+    // often share a bin, and filling a bin whose address came out of the long chain of the
+    // binning arithmetic kept the processor from running ahead to the next primitive's update
+    // (32 against one loop: Sponza's build 7% faster, the bunny's 6%).
     Split best_sah_split(uint32_t begin, uint32_t end, const Binning& binning) {
         // Only the bins in use are set up: clearing all of them cost more than binning small nodes.
         Bins bins;
@@ -185,14 +190,20 @@ private:
         }
         // The low byte of each lane, packed into one word.
         const __m128i low_bytes = _mm_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
-        for (uint32_t i = begin; i < end; ++i) {
-            BuildPrim& p = prims_[i];
-            const uint32_t word = static_cast<uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi8(binning.bins(p.box), low_bytes)));
-            std::memcpy(p.bin.data(), &word, sizeof word);
-            for (int a = 0; a < 3; ++a) {
-                Bin& bin = bins[(word >> (8 * a)) & 0xff];
-                bin.boxes[a].box.extend(p.box);
-                ++bin.counts[a];
+        for (uint32_t block = begin; block < end; block += kBinningBlock) {
+            const uint32_t block_end = std::min(end, block + kBinningBlock);
+            for (uint32_t i = block; i < block_end; ++i) {
+                BuildPrim& p = prims_[i];
+                const auto word = static_cast<uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi8(binning.bins(p.box), low_bytes)));
+                std::memcpy(p.bin.data(), &word, sizeof word);
+            }
+            for (uint32_t i = block; i < block_end; ++i) {
+                const BuildPrim& p = prims_[i];
+                for (int a = 0; a < 3; ++a) {
+                    Bin& bin = bins[p.bin[a]];
+                    bin.boxes[a].box.extend(p.box);
+                    ++bin.counts[a];
+                }
             }
         }
         return best_split(bins, binning, end - begin);
