@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <utility>
 
 namespace glint {
 namespace {
@@ -128,12 +129,28 @@ public:
     }
 
 private:
-    void build(uint32_t node, uint32_t begin, uint32_t end, int depth) {
-        SseBox bounds, centres;  // centres doubled
-        for (uint32_t i = begin; i < end; ++i) {
-            bounds.extend(prims_[i].box);
-            centres.extend(prims_[i].twice_centre());
+    // The box around the primitives and the box around their doubled centres. Two of each, for
+    // even and odd positions: one chain of minima and maxima would make each primitive wait for
+    // the previous one's.
+    std::pair<SseBox, SseBox> extent(uint32_t begin, uint32_t end) const {
+        std::array<SseBox, 2> bounds, centres;
+        const auto add = [&](size_t chain, uint32_t i) {
+            bounds[chain].extend(prims_[i].box);
+            centres[chain].extend(prims_[i].twice_centre());
+        };
+        uint32_t i = begin;
+        for (; i + 1 < end; i += 2) {
+            add(0, i);
+            add(1, i + 1);
         }
+        if (i < end) add(0, i);
+        bounds[0].extend(bounds[1]);
+        centres[0].extend(centres[1]);
+        return {bounds[0], centres[0]};
+    }
+
+    void build(uint32_t node, uint32_t begin, uint32_t end, int depth) {
+        const auto [bounds, centres] = extent(begin, end);
         (*nodes_)[node].box = bounds.to_float_box();
         const uint32_t count = end - begin;
         const float leaf_cost = float(count);
