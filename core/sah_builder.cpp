@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <utility>
 
@@ -94,11 +95,12 @@ public:
     }
     int count() const { return count_; }
     bool splittable(int axis) const { return splittable_[axis]; }
-    // The bin along each axis in lanes 0..2. A box reaching infinity can make the product NaN,
-    // which converts to INT_MIN: its low byte, the one best_sah_split keeps, is bin 0.
+    // The bin along each axis in lanes 0..2, clamped at both ends: a box reaching infinity has
+    // an infinite or NaN centre (which the minima and maxima of the centre box may pass over),
+    // and its product converts to INT_MIN; such a primitive lands in an end bin.
     __m128i bins(const SseBox& box) const {
         const __m128i bin = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(box.twice_centre(), lo_), scale_));
-        return _mm_min_epi32(bin, _mm_set1_epi32(count_ - 1));
+        return _mm_max_epi32(_mm_min_epi32(bin, _mm_set1_epi32(count_ - 1)), _mm_setzero_si128());
     }
 
 private:
@@ -274,18 +276,20 @@ private:
         return best;
     }
 
+    // A NaN centre (a box from -inf to +inf) counts as 0, so the order stays a strict weak one.
+    static float median_key(const BuildPrim& p, int axis) {
+        alignas(16) float c[4];
+        _mm_store_ps(c, p.twice_centre());
+        return std::isnan(c[axis]) ? 0.0f : c[axis];
+    }
+
     uint32_t median_split(uint32_t begin, uint32_t end, const SseBox& centres) {
         alignas(16) float extent[4];
         _mm_store_ps(extent, _mm_sub_ps(centres.hi, centres.lo));
         const int axis = max_axis(Vec3{extent[0], extent[1], extent[2]});
         const uint32_t mid = begin + (end - begin) / 2;
         std::nth_element(prims_.begin() + begin, prims_.begin() + mid, prims_.begin() + end,
-                         [axis](const BuildPrim& a, const BuildPrim& b) {
-                             alignas(16) float ca[4], cb[4];
-                             _mm_store_ps(ca, a.twice_centre());
-                             _mm_store_ps(cb, b.twice_centre());
-                             return ca[axis] < cb[axis];
-                         });
+                         [axis](const BuildPrim& a, const BuildPrim& b) { return median_key(a, axis) < median_key(b, axis); });
         return mid;
     }
 
