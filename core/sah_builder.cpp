@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstring>
+#include <utility>
 
 namespace glint {
 namespace {
@@ -16,6 +19,8 @@ namespace {
 constexpr int kBins = 32;
 constexpr int kFewBins = 16;
 constexpr uint32_t kManyPrimitives = 1024;
+// Primitives binned per block (see best_sah_split).
+constexpr uint32_t kBinningBlock = 32;
 // Relative to one primitive test. Measured on the eight-wide tree (callgrind, Sponza's diffuse
 // rays; bytes from `glint trace-rays`): 1 gives the fewest instructions but half-empty nodes
 // (bunny 89.6 B/triangle, above Embree's 85); 2 costs 1.3% more instructions for 22% less
@@ -39,7 +44,9 @@ struct SseBox {
         lo = _mm_min_ps(lo, p);
         hi = _mm_max_ps(hi, p);
     }
-    __m128 centre() const { return _mm_mul_ps(_mm_add_ps(lo, hi), _mm_set1_ps(0.5f)); }
+    // lo + hi: the centre, doubled, which orders and bins primitives as the centre does (halving
+    // is exact) for one instruction less.
+    __m128 twice_centre() const { return _mm_add_ps(lo, hi); }
     float half_area() const {
         // x·y + y·z + z·x in the register: the extent times its rotation, then the lanes summed.
         const __m128 e = _mm_sub_ps(hi, lo);
@@ -55,30 +62,31 @@ struct SseBox {
     }
 };
 
-// A primitive's box and its bin along each axis in the node being split, which the binning
-// pass leaves for the partition. 48 bytes: the centre is recomputed rather than stored, as the
-// build streams these through the cache once per level.
 // A bin's box, left uninitialised until the node's binning sets it up.
 union LazyBox {
     SseBox box;
     LazyBox() {}
 };
 
+// A primitive's box and its bin along each axis in the node being split, which the binning
+// pass leaves for the partition (the fourth byte is unused; the four are stored as one word).
+// 48 bytes: the centre is recomputed rather than stored, as the build streams these through the
+// cache once per level.
 struct BuildPrim {
     SseBox box;
     uint32_t index;
-    std::array<uint8_t, 3> bin;
-    __m128 centre() const { return box.centre(); }
+    std::array<uint8_t, 4> bin;
+    __m128 twice_centre() const { return box.twice_centre(); }
 };
 static_assert(sizeof(BuildPrim) == 48);
 
-// Maps centres to bins along all three axes at once.
+// Maps doubled centres to bins along all three axes at once.
 class Binning {
 public:
-    Binning(const SseBox& centres, uint32_t count)
-        : lo_(centres.lo), count_(count >= kManyPrimitives ? kBins : std::min(kFewBins, int(count))) {
+    Binning(const SseBox& twice_centres, uint32_t count)
+        : lo_(twice_centres.lo), count_(count >= kManyPrimitives ? kBins : std::min(kFewBins, int(count))) {
         alignas(16) float extent[4], scale[4] = {};
-        _mm_store_ps(extent, _mm_sub_ps(centres.hi, centres.lo));
+        _mm_store_ps(extent, _mm_sub_ps(twice_centres.hi, twice_centres.lo));
         for (int a = 0; a < 3; ++a) {
             splittable_[a] = extent[a] > 0;
             scale[a] = splittable_[a] ? float(count_) / extent[a] : 0;
@@ -87,11 +95,12 @@ public:
     }
     int count() const { return count_; }
     bool splittable(int axis) const { return splittable_[axis]; }
-    std::array<int, 3> bins(__m128 centre) const {
-        alignas(16) int32_t b[4];
-        const __m128i bin = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(centre, lo_), scale_));
-        _mm_store_si128(reinterpret_cast<__m128i*>(b), _mm_min_epi32(bin, _mm_set1_epi32(count_ - 1)));
-        return {b[0], b[1], b[2]};
+    // The bin along each axis in lanes 0..2, clamped at both ends: a box reaching infinity has
+    // an infinite or NaN centre (which the minima and maxima of the centre box may pass over),
+    // and its product converts to INT_MIN; such a primitive lands in an end bin.
+    __m128i bins(const SseBox& box) const {
+        const __m128i bin = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(box.twice_centre(), lo_), scale_));
+        return _mm_max_epi32(_mm_min_epi32(bin, _mm_set1_epi32(count_ - 1)), _mm_setzero_si128());
     }
 
 private:
@@ -122,23 +131,38 @@ public:
     }
 
 private:
-    void build(uint32_t node, uint32_t begin, uint32_t end, int depth) {
-        SseBox bounds, centres;
-        for (uint32_t i = begin; i < end; ++i) {
-            bounds.extend(prims_[i].box);
-            centres.extend(prims_[i].centre());
+    // The box around the primitives and the box around their doubled centres. Two of each, for
+    // even and odd positions: one chain of minima and maxima would make each primitive wait for
+    // the previous one's.
+    std::pair<SseBox, SseBox> extent(uint32_t begin, uint32_t end) const {
+        std::array<SseBox, 2> bounds, centres;
+        const auto add = [&](size_t chain, uint32_t i) {
+            bounds[chain].extend(prims_[i].box);
+            centres[chain].extend(prims_[i].twice_centre());
+        };
+        uint32_t i = begin;
+        for (; i + 1 < end; i += 2) {
+            add(0, i);
+            add(1, i + 1);
         }
+        if (i < end) add(0, i);
+        bounds[0].extend(bounds[1]);
+        centres[0].extend(centres[1]);
+        return {bounds[0], centres[0]};
+    }
+
+    void build(uint32_t node, uint32_t begin, uint32_t end, int depth) {
+        const auto [bounds, centres] = extent(begin, end);
         (*nodes_)[node].box = bounds.to_float_box();
         const uint32_t count = end - begin;
+        const float leaf_cost = float(count);
+        // A split costs at least the traversal step: a node of no more primitives than that is a
+        // leaf without a look at its bins.
+        if (leaf_cost <= kTraversalCost) return make_leaf(node, begin, count);
         const Binning binning(centres, count);
         const Split split = depth < kSahDepth ? best_sah_split(begin, end, binning) : Split{};
-        const float leaf_cost = float(count);
         const float split_cost = kTraversalCost + split.cost / bounds.half_area();
-        if (count == 1 || (count <= BinaryTree::kMaxLeafSize && leaf_cost <= split_cost)) {
-            (*nodes_)[node].first = begin;
-            (*nodes_)[node].count = count;
-            return;
-        }
+        if (count <= BinaryTree::kMaxLeafSize && leaf_cost <= split_cost) return make_leaf(node, begin, count);
         uint32_t mid = begin;
         if (split.axis >= 0) {
             const auto first_right =
@@ -157,51 +181,106 @@ private:
         build(left + 1, mid, end, depth + 1);
     }
 
-    // One pass over the primitives fills the bins of all three axes and notes each
-    // primitive's bins; the cost is the unnormalised SAH sum.
+    void make_leaf(uint32_t node, uint32_t begin, uint32_t count) {
+        (*nodes_)[node].first = begin;
+        (*nodes_)[node].count = count;
+    }
+
+    // One bin along all three axes: a box and a count for each. 128 bytes, so a bin's offset is
+    // its index shifted, and the axes' boxes and counts lie at fixed offsets from there.
+    struct alignas(128) Bin {
+        std::array<LazyBox, 3> boxes;
+        std::array<uint32_t, 4> counts;  // lane 3 is 0
+        __m128i count() const { return _mm_load_si128(reinterpret_cast<const __m128i*>(counts.data())); }
+    };
+    using Bins = std::array<Bin, kBins>;
+
+    // The primitives fill the bins of all three axes and note their bins; the cost is the
+    // unnormalised SAH sum. Block by block, the bins are found first and filled after: neighbours
+    // often share a bin, and filling a bin whose address came out of the long chain of the
+    // binning arithmetic kept the processor from running ahead to the next primitive's update
+    // (32 against one loop: Sponza's build 7% faster, the bunny's 6%).
     Split best_sah_split(uint32_t begin, uint32_t end, const Binning& binning) {
         // Only the bins in use are set up: clearing all of them cost more than binning small nodes.
-        std::array<std::array<LazyBox, kBins>, 3> bins;
-        std::array<std::array<uint32_t, kBins>, 3> counts;
-        for (int a = 0; a < 3; ++a)
-            for (int b = 0; b < binning.count(); ++b) {
-                bins[a][b].box = SseBox{};
-                counts[a][b] = 0;
+        Bins bins;
+        for (int b = 0; b < binning.count(); ++b) {
+            for (LazyBox& box : bins[b].boxes) box.box = SseBox{};
+            bins[b].counts = {};
+        }
+        // The low byte of each lane, packed into one word.
+        const __m128i low_bytes = _mm_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
+        for (uint32_t block = begin; block < end; block += kBinningBlock) {
+            const uint32_t block_end = std::min(end, block + kBinningBlock);
+            for (uint32_t i = block; i < block_end; ++i) {
+                BuildPrim& p = prims_[i];
+                const auto word = static_cast<uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi8(binning.bins(p.box), low_bytes)));
+                std::memcpy(p.bin.data(), &word, sizeof word);
             }
-        for (uint32_t i = begin; i < end; ++i) {
-            BuildPrim& p = prims_[i];
-            const std::array<int, 3> b = binning.bins(p.centre());
-            for (int a = 0; a < 3; ++a) {
-                bins[a][b[a]].box.extend(p.box);
-                ++counts[a][b[a]];
-                p.bin[a] = static_cast<uint8_t>(b[a]);
+            for (uint32_t i = block; i < block_end; ++i) {
+                const BuildPrim& p = prims_[i];
+                for (int a = 0; a < 3; ++a) {
+                    Bin& bin = bins[p.bin[a]];
+                    bin.boxes[a].box.extend(p.box);
+                    ++bin.counts[a];
+                }
             }
         }
+        return best_split(bins, binning, end - begin);
+    }
+
+    // The half areas of three boxes, one per lane (0 for an empty box).
+    static __m128 half_areas(const std::array<SseBox, 3>& boxes) {
+        __m128 x = _mm_sub_ps(boxes[0].hi, boxes[0].lo), y = _mm_sub_ps(boxes[1].hi, boxes[1].lo);
+        __m128 z = _mm_sub_ps(boxes[2].hi, boxes[2].lo), w = _mm_setzero_ps();
+        _MM_TRANSPOSE4_PS(x, y, z, w);  // now x, y, z hold the extents along x, y, z of boxes 0..2
+        const __m128 area = _mm_add_ps(_mm_add_ps(_mm_mul_ps(x, y), _mm_mul_ps(y, z)), _mm_mul_ps(z, x));
+        return _mm_andnot_ps(_mm_cmplt_ps(x, _mm_setzero_ps()), area);
+    }
+
+    // Sweeps from the right to get each split's right-hand cost, then from the left, the three
+    // axes in the lanes of one register. Ties go to the lower axis, then to the lower bin.
+    static Split best_split(const Bins& bins, const Binning& binning, uint32_t total) {
+        const int bin_count = binning.count();
+        alignas(16) std::array<std::array<float, 4>, kBins> right_cost;
+        std::array<SseBox, 3> acc;
+        __m128i n = _mm_setzero_si128();
+        for (int b = bin_count - 1; b > 0; --b) {
+            for (int a = 0; a < 3; ++a) acc[a].extend(bins[b].boxes[a].box);
+            n = _mm_add_epi32(n, bins[b].count());
+            _mm_store_ps(right_cost[b].data(), _mm_mul_ps(half_areas(acc), _mm_cvtepi32_ps(n)));
+        }
+        acc = {};
+        n = _mm_setzero_si128();
+        const __m128i all = _mm_set1_epi32(static_cast<int>(total));
+        __m128 best_cost = _mm_set1_ps(std::numeric_limits<float>::infinity());
+        __m128i best_bin = _mm_setzero_si128();
+        for (int b = 0; b < bin_count - 1; ++b) {
+            for (int a = 0; a < 3; ++a) acc[a].extend(bins[b].boxes[a].box);
+            n = _mm_add_epi32(n, bins[b].count());
+            const __m128 cost =
+                _mm_add_ps(_mm_mul_ps(half_areas(acc), _mm_cvtepi32_ps(n)), _mm_load_ps(right_cost[b + 1].data()));
+            // Both sides hold primitives (0 < n < total) and the cost is lower than the best so far.
+            const __m128 both_sides = _mm_castsi128_ps(
+                _mm_and_si128(_mm_cmpgt_epi32(n, _mm_setzero_si128()), _mm_cmplt_epi32(n, all)));
+            const __m128 better = _mm_and_ps(both_sides, _mm_cmplt_ps(cost, best_cost));
+            best_cost = _mm_blendv_ps(best_cost, cost, better);
+            best_bin = _mm_blendv_epi8(best_bin, _mm_set1_epi32(b + 1), _mm_castps_si128(better));
+        }
+        alignas(16) float costs[4];
+        alignas(16) int32_t first_right[4];
+        _mm_store_ps(costs, best_cost);
+        _mm_store_si128(reinterpret_cast<__m128i*>(first_right), best_bin);
         Split best;
-        for (int axis = 0; axis < 3; ++axis)
-            if (binning.splittable(axis)) best_split_along(axis, binning.count(), bins[axis], counts[axis], end - begin, best);
+        for (int a = 0; a < 3; ++a)
+            if (binning.splittable(a) && costs[a] < best.cost) best = {a, first_right[a], costs[a]};
         return best;
     }
 
-    // Sweeps from the right to get each split's right-hand cost, then from the left.
-    static void best_split_along(int axis, int bin_count, const std::array<LazyBox, kBins>& bins,
-                                 const std::array<uint32_t, kBins>& counts, uint32_t total, Split& best) {
-        std::array<float, kBins> right_cost{};
-        SseBox acc;
-        uint32_t n = 0;
-        for (int b = bin_count - 1; b > 0; --b) {
-            acc.extend(bins[b].box);
-            n += counts[b];
-            right_cost[b] = acc.half_area() * float(n);
-        }
-        acc = SseBox{};
-        n = 0;
-        for (int b = 0; b < bin_count - 1; ++b) {
-            acc.extend(bins[b].box);
-            n += counts[b];
-            const float cost = acc.half_area() * float(n) + right_cost[b + 1];
-            if (n > 0 && n < total && cost < best.cost) best = {axis, b + 1, cost};
-        }
+    // A NaN centre (a box from -inf to +inf) counts as 0, so the order stays a strict weak one.
+    static float median_key(const BuildPrim& p, int axis) {
+        alignas(16) float c[4];
+        _mm_store_ps(c, p.twice_centre());
+        return std::isnan(c[axis]) ? 0.0f : c[axis];
     }
 
     uint32_t median_split(uint32_t begin, uint32_t end, const SseBox& centres) {
@@ -210,12 +289,7 @@ private:
         const int axis = max_axis(Vec3{extent[0], extent[1], extent[2]});
         const uint32_t mid = begin + (end - begin) / 2;
         std::nth_element(prims_.begin() + begin, prims_.begin() + mid, prims_.begin() + end,
-                         [axis](const BuildPrim& a, const BuildPrim& b) {
-                             alignas(16) float ca[4], cb[4];
-                             _mm_store_ps(ca, a.centre());
-                             _mm_store_ps(cb, b.centre());
-                             return ca[axis] < cb[axis];
-                         });
+                         [axis](const BuildPrim& a, const BuildPrim& b) { return median_key(a, axis) < median_key(b, axis); });
         return mid;
     }
 
