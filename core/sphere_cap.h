@@ -4,6 +4,7 @@
 // instead of the whole light is what makes light sampling work there.
 #pragma once
 
+#include "sampling.h"
 #include "sphere.h"
 
 namespace glint {
@@ -19,8 +20,8 @@ struct SphereCap {
     // A uniformly distributed unit direction w from the centre into the cap.
     Vec3 sample(double u1, double u2) const {
         const double h = u1 * one_minus_cos, sin_theta = std::sqrt(std::max(0.0, h * (2 - h)));
-        const double phi = 2 * kPi * u2;
-        return normalize(Frame::around(axis).to_world({sin_theta * std::cos(phi), sin_theta * std::sin(phi), 1 - h}));
+        const CosSin phi = cos_sin_2pi(u2);
+        return normalize(Frame::around(axis).to_world({sin_theta * phi.cos, sin_theta * phi.sin, 1 - h}));
     }
 
     // The part of `light` inside (or outside) `occluder`, if the two surfaces cross. Widened by
