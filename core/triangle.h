@@ -3,6 +3,7 @@
 
 #include <immintrin.h>
 
+#include <cmath>
 #include <cstdint>
 #include <utility>
 
@@ -40,17 +41,24 @@ struct RayShear {
     double ox, oy, oz;
 
     explicit RayShear(const Ray& ray) {
-        const Vec3& d = ray.d;
-        kz = max_axis(abs(d));
-        kx = kz == 2 ? 0 : kz + 1;
-        ky = kx == 2 ? 0 : kx + 1;
-        if (d[kz] < 0) std::swap(kx, ky);  // keep the winding, so the edge signs mean the same
-        sx = d[kx] / d[kz];
-        sy = d[ky] / d[kz];
-        sz = 1.0 / d[kz];
-        ox = ray.o[kx];
-        oy = ray.o[ky];
-        oz = ray.o[kz];
+        // Branch-free: the axes by table and conditional moves, the three divisions in one
+        // instruction (each lane rounds as its scalar division would).
+        const double d[3] = {ray.d.x, ray.d.y, ray.d.z}, o[3] = {ray.o.x, ray.o.y, ray.o.z};
+        const double ax = std::fabs(d[0]), ay = std::fabs(d[1]), az = std::fabs(d[2]);
+        kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);  // max_axis(abs(d))
+        static constexpr int kNext[3] = {1, 2, 0};
+        const int next = kNext[kz], after = kNext[next];
+        const bool flip = d[kz] < 0;  // keep the winding, so the edge signs mean the same
+        kx = flip ? after : next;
+        ky = flip ? next : after;
+        alignas(32) double q[4];
+        _mm256_store_pd(q, _mm256_div_pd(_mm256_setr_pd(d[kx], d[ky], 1.0, 1.0), _mm256_set1_pd(d[kz])));
+        sx = q[0];
+        sy = q[1];
+        sz = q[2];
+        ox = o[kx];
+        oy = o[ky];
+        oz = o[kz];
     }
 };
 
