@@ -241,9 +241,12 @@ private:
         l.v = _mm256_sub_pd(_mm256_mul_pd(a[0], c[1]), _mm256_mul_pd(a[1], c[0]));
         l.w = _mm256_sub_pd(_mm256_mul_pd(b[0], a[1]), _mm256_mul_pd(b[1], a[0]));
         const unsigned used = ((1u << n) - 1) & ~skip;
-        const unsigned negative = any_compares<_CMP_LT_OQ>(l), positive = any_compares<_CMP_GT_OQ>(l);
+        // Signs from the sign bits: all three set, or none, once the zeros are out. A NaN lane's
+        // sign bit is arbitrary, but its t is NaN and fails in_range() either way.
+        const auto all_negative = static_cast<unsigned>(_mm256_movemask_pd(_mm256_and_pd(_mm256_and_pd(l.u, l.v), l.w)));
+        const auto any_negative = static_cast<unsigned>(_mm256_movemask_pd(_mm256_or_pd(_mm256_or_pd(l.u, l.v), l.w)));
         l.on_edge = any_compares<_CMP_EQ_OQ>(l) & used;
-        l.inside = (negative ^ positive) & used & ~l.on_edge;
+        l.inside = (all_negative | ~any_negative) & used & ~l.on_edge;
         return l;
     }
 
