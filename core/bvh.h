@@ -72,6 +72,8 @@ public:
     // Closest hit. `test(first, count, ray)` intersects the leaf's primitives at build-order
     // positions first..first+count-1, in that order, shrinking ray.tmax to each hit, and returns
     // whether any was hit. Returns whether anything was hit.
+    // Always inlined, as is any(): the call's prologue, spills and epilogue were ~50 of a
+    // primary ray's 680 instructions.
     template <typename Test>
     [[gnu::always_inline]] bool closest(Ray& ray, Test&& test) const {
         if (nodes_.empty()) return false;
