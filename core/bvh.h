@@ -72,8 +72,10 @@ public:
     // Closest hit. `test(first, count, ray)` intersects the leaf's primitives at build-order
     // positions first..first+count-1, in that order, shrinking ray.tmax to each hit, and returns
     // whether any was hit. Returns whether anything was hit.
+    // Always inlined, as is any(): the call's prologue, spills and epilogue were ~50 of a
+    // primary ray's 680 instructions.
     template <typename Test>
-    bool closest(Ray& ray, Test&& test) const {
+    [[gnu::always_inline]] bool closest(Ray& ray, Test&& test) const {
         if (nodes_.empty()) return false;
         const RayBoxTest box(ray);
         const BvhNode* const nodes = nodes_.data();  // held here: the tests' stores might alias nodes_
@@ -127,7 +129,7 @@ public:
     // Any hit in (tmin, tmax]: `test(first, count, ray)` returns whether one of the leaf's
     // primitives blocks the ray.
     template <typename Test>
-    bool any(const Ray& ray, Test&& test) const {
+    [[gnu::always_inline]] bool any(const Ray& ray, Test&& test) const {
         if (nodes_.empty()) return false;
         const RayBoxTest box(ray);
         const BvhNode* const nodes = nodes_.data();

@@ -40,21 +40,23 @@ struct alignas(32) WideBox {
 class RayBoxTest {
 public:
     explicit RayBoxTest(const Ray& ray) {
-        // Rounded four at a time: the origin up, the origin and tmin down, the reciprocals to nearest.
-        alignas(16) float up[4], down[4], inv[4];
+        // Rounded four at a time: the origin up, the origin and tmin down, the reciprocals to
+        // nearest. A negative reciprocal (-0's -inf included) swaps an axis' near and far
+        // planes, so its sign bit picks the rounding for each: no branch per axis.
         const __m256d origin_tmin = _mm256_setr_pd(ray.o.x, ray.o.y, ray.o.z, ray.tmin);
-        _mm_store_ps(up, to_float_up(origin_tmin));
-        _mm_store_ps(down, to_float_down(origin_tmin));
-        _mm_store_ps(inv, _mm256_cvtpd_ps(_mm256_div_pd(_mm256_set1_pd(1.0), _mm256_setr_pd(ray.d.x, ray.d.y, ray.d.z, 1.0))));
+        const __m128 up = to_float_up(origin_tmin), down = to_float_down(origin_tmin);
+        const __m128 inv = _mm256_cvtpd_ps(_mm256_div_pd(_mm256_set1_pd(1.0), _mm256_setr_pd(ray.d.x, ray.d.y, ray.d.z, 1.0)));
+        const __m128 near = _mm_blendv_ps(up, down, inv), far = _mm_blendv_ps(down, up, inv);
+        const auto negative = static_cast<unsigned>(_mm_movemask_ps(inv));
         for (int a = 0; a < 3; ++a) {
-            const bool negative = std::signbit(inv[a]);  // -0 counts as negative, like its -inf
-            near_offset_[a] = kBvhWidth * (2 * a + negative);
-            far_offset_[a] = kBvhWidth * (2 * a + !negative);
-            near_origin_[a] = _mm256_set1_ps(negative ? down[a] : up[a]);
-            far_origin_[a] = _mm256_set1_ps(negative ? up[a] : down[a]);
-            inv_[a] = _mm256_set1_ps(inv[a]);
+            const auto flip = static_cast<int>(negative >> a & 1);
+            near_offset_[a] = kBvhWidth * (2 * a + flip);
+            far_offset_[a] = kBvhWidth * (2 * a + 1 - flip);
+            near_origin_[a] = lane(near, a);
+            far_origin_[a] = lane(far, a);
+            inv_[a] = lane(inv, a);
         }
-        tmin_ = _mm256_set1_ps(down[3]);
+        tmin_ = lane(down, 3);
     }
 
     // Bit i of the result is set when box i overlaps the ray in (tmin, tmax]; `entry` receives
@@ -75,6 +77,8 @@ public:
 
 private:
     static constexpr float kInfinityF = std::numeric_limits<float>::infinity();
+    // Lane i of v in all eight lanes.
+    static __m256 lane(__m128 v, int i) { return _mm256_permutevar8x32_ps(_mm256_castps128_ps256(v), _mm256_set1_epi32(i)); }
     // Distances to eight planes along one axis.
     static __m256 distance(const float* planes, int offset, __m256 origin, __m256 inv) {
         return _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(planes + offset), origin), inv);

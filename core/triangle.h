@@ -3,6 +3,7 @@
 
 #include <immintrin.h>
 
+#include <cmath>
 #include <cstdint>
 #include <utility>
 
@@ -40,17 +41,24 @@ struct RayShear {
     double ox, oy, oz;
 
     explicit RayShear(const Ray& ray) {
-        const Vec3& d = ray.d;
-        kz = max_axis(abs(d));
-        kx = kz == 2 ? 0 : kz + 1;
-        ky = kx == 2 ? 0 : kx + 1;
-        if (d[kz] < 0) std::swap(kx, ky);  // keep the winding, so the edge signs mean the same
-        sx = d[kx] / d[kz];
-        sy = d[ky] / d[kz];
-        sz = 1.0 / d[kz];
-        ox = ray.o[kx];
-        oy = ray.o[ky];
-        oz = ray.o[kz];
+        // Branch-free: the axes by table and conditional moves, the three divisions in one
+        // instruction (each lane rounds as its scalar division would).
+        const double d[3] = {ray.d.x, ray.d.y, ray.d.z}, o[3] = {ray.o.x, ray.o.y, ray.o.z};
+        const double ax = std::fabs(d[0]), ay = std::fabs(d[1]), az = std::fabs(d[2]);
+        kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);  // max_axis(abs(d))
+        static constexpr int kNext[3] = {1, 2, 0};
+        const int next = kNext[kz], after = kNext[next];
+        const bool flip = d[kz] < 0;  // keep the winding, so the edge signs mean the same
+        kx = flip ? after : next;
+        ky = flip ? next : after;
+        alignas(32) double q[4];
+        _mm256_store_pd(q, _mm256_div_pd(_mm256_setr_pd(d[kx], d[ky], 1.0, 1.0), _mm256_set1_pd(d[kz])));
+        sx = q[0];
+        sy = q[1];
+        sz = q[2];
+        ox = o[kx];
+        oy = o[ky];
+        oz = o[kz];
     }
 };
 
@@ -233,9 +241,12 @@ private:
         l.v = _mm256_sub_pd(_mm256_mul_pd(a[0], c[1]), _mm256_mul_pd(a[1], c[0]));
         l.w = _mm256_sub_pd(_mm256_mul_pd(b[0], a[1]), _mm256_mul_pd(b[1], a[0]));
         const unsigned used = ((1u << n) - 1) & ~skip;
-        const unsigned negative = any_compares<_CMP_LT_OQ>(l), positive = any_compares<_CMP_GT_OQ>(l);
+        // Signs from the sign bits: all three set, or none, once the zeros are out. A NaN lane's
+        // sign bit is arbitrary, but its t is NaN and fails in_range() either way.
+        const auto all_negative = static_cast<unsigned>(_mm256_movemask_pd(_mm256_and_pd(_mm256_and_pd(l.u, l.v), l.w)));
+        const auto any_negative = static_cast<unsigned>(_mm256_movemask_pd(_mm256_or_pd(_mm256_or_pd(l.u, l.v), l.w)));
         l.on_edge = any_compares<_CMP_EQ_OQ>(l) & used;
-        l.inside = (negative ^ positive) & used & ~l.on_edge;
+        l.inside = (all_negative | ~any_negative) & used & ~l.on_edge;
         return l;
     }
 
