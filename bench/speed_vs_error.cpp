@@ -8,7 +8,8 @@
 //   no-lt        glint without light tracing
 //   no-nee       BVH, no light sampling, no light tracing
 //   no-bvh       light sampling and light tracing, every primitive tested
-//   smallpt      none: smallpt's estimator and its brute-force intersection
+//   smallpt      none: smallpt's estimator (independent random samples) and its brute-force
+//                intersection
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -41,6 +42,7 @@ LoadedScene load_mode(const Options& o, const std::string& mode) {
     if (mode == "no-nee" || mode == "smallpt") integrator["light_sampling"] = false;
     if (mode == "no-lt" || mode == "no-nee" || mode == "smallpt") integrator["light_tracing"] = "off";
     if (mode == "no-bvh" || mode == "smallpt") integrator["accelerator"] = "list";
+    if (mode == "smallpt") scene["film"]["sampler"] = "independent";
     LoadedScene loaded = parse_scene(scene.dump(), fs::path(o.scene).parent_path());
     loaded.settings.width = o.width;
     loaded.settings.height = o.height;

@@ -30,6 +30,7 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
     h.value(settings.width);
     h.value(settings.height);
     h.value(settings.filter);
+    h.value(settings.sampler);
     h.value(settings.seed);
     return h.digest();
 }

@@ -42,14 +42,21 @@ Rgb RenderJob::sample(int x, int y, uint32_t index) const {
     // the pixel, which is what the light's edge (most of the error on smallpt's box) needs.
     // The first diffuse vertex's light sample and bounce get two more such sequences, each
     // scrambled with its own key and stratified over all the pixel's samples (the light seen
-    // from a subpixel's first vertex hardly differs from the others').
+    // from a subpixel's first vertex hardly differs from the others'). The independent sampler
+    // draws them all from the sample's stream, as smallpt does.
+    const bool sobol = settings_.sampler == Sampler::sobol;
     const uint32_t round = samples_per_round(settings_.filter);
     const uint64_t key = mix64(mix64(settings_.seed ^ 0xF11Du) ^ pixel);
     double u1, u2;
     FirstVertexSamples first;
-    sobol_2d(index / round, key ^ (index % round), u1, u2);
-    sobol_2d(index, mix64(key ^ 0x11647u), first.light[0], first.light[1]);
-    sobol_2d(index, mix64(key ^ 0xB0u), first.bounce[0], first.bounce[1]);
+    if (sobol) {
+        sobol_2d(index / round, key ^ (index % round), u1, u2);
+        sobol_2d(index, mix64(key ^ 0x11647u), first.light[0], first.light[1]);
+        sobol_2d(index, mix64(key ^ 0xB0u), first.bounce[0], first.bounce[1]);
+    } else {
+        u1 = rng.uniform();
+        u2 = rng.uniform();
+    }
     const double row_from_bottom = settings_.height - 1 - y;
     const uint32_t sub = index % 4;  // smallpt's subpixel (sx, sy) = (sub mod 2, sub / 2)
     const double fx = x + filter_offset(settings_.filter, sub & 1, u1);
@@ -61,7 +68,7 @@ Rgb RenderJob::sample(int x, int y, uint32_t index) const {
         Rng light_rng(settings_.seed, pixel, uint64_t(index) | (uint64_t(1) << 63));
         light = light_tracer_.trace(light_rng);
     }
-    return tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng, light, &first);
+    return tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng, light, sobol ? &first : nullptr);
 }
 
 bool RenderJob::should_stop() const { return cancelled_ || Clock::now() >= deadline_; }

@@ -18,6 +18,11 @@
 
 namespace glint {
 
+// Where a camera sample's film position, and its first diffuse vertex's light sample and bounce,
+// come from: scrambled Sobol' points, stratified over the pixel's samples, or independent
+// random numbers, as smallpt draws them (for comparing with smallpt's estimator).
+enum class Sampler { sobol, independent };
+
 struct RenderSettings {
     int width = 1024, height = 768;
     uint32_t spp = 64;  // rounded up to a multiple of samples_per_round(filter)
@@ -25,6 +30,7 @@ struct RenderSettings {
     // over machines. Must be a multiple of samples_per_round(filter).
     uint32_t first_sample = 0;
     Filter filter = Filter::tent;
+    Sampler sampler = Sampler::sobol;
     uint64_t seed = 0;
     Encoding encoding = Encoding::gamma22;
     double target_error = 0;  // stop once error_estimate() <= this; 0 = off

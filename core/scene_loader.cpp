@@ -152,12 +152,14 @@ private:
     }
 
     RenderSettings parse_film(const At& at, Rgb& background) const {
-        at.expect_object({"width", "height", "spp", "filter", "background", "encoding", "seed"});
+        at.expect_object({"width", "height", "spp", "filter", "sampler", "background", "encoding", "seed"});
         RenderSettings s;
         if (at.has("width")) s.width = int(at["width"].integer(1, limits_.max_dimension));
         if (at.has("height")) s.height = int(at["height"].integer(1, limits_.max_dimension));
         if (at.has("spp")) s.spp = uint32_t(at["spp"].integer(1, limits_.max_spp));
         if (at.has("filter")) s.filter = at["filter"].choice({"tent", "box"}) == "tent" ? Filter::tent : Filter::box;
+        if (at.has("sampler"))
+            s.sampler = at["sampler"].choice({"sobol", "independent"}) == "sobol" ? Sampler::sobol : Sampler::independent;
         if (at.has("background")) background = at["background"].colour(kMaxEmission);
         if (at.has("encoding"))
             s.encoding = at["encoding"].choice({"gamma2.2", "srgb"}) == "srgb" ? Encoding::srgb : Encoding::gamma22;
