@@ -128,7 +128,7 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
     const bool nee = settings.light_sampling && !scene_.lights().empty();
     const bool light_tracing = scene_.light_tracing();
     Rgb result{0};
-    for (;; ) {
+    for (;;) {
         const Ray& ray = path.ray;
         Hit hit;
         if (!scene_.geometry().intersect(ray, path.self, hit)) {
@@ -173,7 +173,7 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
         }
         BsdfSample bs, reflected;
         if (m.type == MaterialType::glass && path.depth < kSplitDepth && split_glass(m, ray.d, si.n, reflected, bs)) {
-            PathState branch = path;
+            PathState branch = path;  // with the same stratified numbers for its first diffuse vertex
             if (extend_path(branch, si, diffuse, reflected, rng)) result += trace(branch, rng, light);
         } else {
             bs = first ? sample_diffuse(m, ray.d, si.n, first->bounce[0], first->bounce[1]) : sample_bsdf(m, ray.d, si.n, rng);
