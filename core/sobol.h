@@ -1,10 +1,11 @@
-// Owen-scrambled Sobol' points in two dimensions, for the samples whose stratification pays
-// most (where in the pixel a camera ray goes, and the first light sample). Point i of the
-// sequence depends only on (key, i), so sample ranges still split and merge, and any thread
-// count gives the same image. Sobol's first two dimensions form a (0,2)-sequence: every
-// power-of-two prefix puts one point in each cell of every 2^a × 2^b grid of that many cells.
-// Nested uniform (Owen) scrambling keeps that, randomises the points without bias, and makes
-// the error of smooth integrands fall faster than with independent samples.
+// Scrambled Sobol' points in two dimensions, for the samples whose stratification pays most
+// (where in the pixel a camera ray goes, and the first diffuse vertex's light sample and
+// bounce). Point i of the sequence depends only on (key, i), so sample ranges still split and
+// merge, and any thread count gives the same image. Sobol's first two dimensions form a
+// (0,2)-sequence: every power-of-two prefix puts one point in each cell of every 2^a × 2^b grid
+// of that many cells. A nested scramble (Owen's kind: each bit flipped by a function of the bits
+// above it) keeps that, randomises the points without bias, and makes the error of smooth
+// integrands fall faster than with independent samples.
 #pragma once
 
 #include "rng.h"
