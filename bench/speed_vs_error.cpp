@@ -43,6 +43,7 @@ LoadedScene load_mode(const Options& o, const std::string& mode) {
     if (mode == "no-lt" || mode == "no-nee" || mode == "smallpt") integrator["light_tracing"] = "off";
     if (mode == "no-bvh" || mode == "smallpt") integrator["accelerator"] = "list";
     if (mode == "smallpt") scene["film"]["sampler"] = "independent";
+    if (mode == "smallpt") integrator["direct_view_rays"] = 0;
     LoadedScene loaded = parse_scene(scene.dump(), fs::path(o.scene).parent_path());
     loaded.settings.width = o.width;
     loaded.settings.height = o.height;

@@ -11,6 +11,7 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
     h.value(in.light_sampling);
     h.value(in.max_depth);
     h.value(in.rr_depth);
+    h.value(in.direct_view_rays);
     h.value(scene.light_tracing());
     const Geometry& g = scene.geometry();
     h.value(g.accelerator());  // the accelerators may break exact ties between equal hits differently

@@ -95,10 +95,12 @@ double PathTracer::bounce_weight(double density_over_pi, const Ray& ray, const S
     return 1 - LightTracer::light_side_weight(density_over_pi, cos_out / pdf);
 }
 
-Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light, const FirstVertexSamples* first) const {
+Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light, const FirstVertexSamples* first,
+                         DirectView direct) const {
     PathState path;
     path.ray = ray;
     path.first = first;
+    path.direct_view = direct;
     return trace(path, rng, light);
 }
 
@@ -112,6 +114,7 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, bool
         path.throughput *= 1 / survive;
     }
     path.shape = extend(path.shape, diffuse);
+    path.seen_directly = path.seen_directly && !diffuse;
     path.specular = bs.specular;
     path.previous_diffuse = diffuse;
     path.bsdf_pdf = bs.pdf;
@@ -132,15 +135,19 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
         const Ray& ray = path.ray;
         Hit hit;
         if (!scene_.geometry().intersect(ray, path.self, hit)) {
-            result += path.throughput * scene_.background();
+            if (path.counts_found_light()) result += path.throughput * scene_.background();
+            break;
+        }
+        const Material& m = scene_.material(hit.prim);
+        const bool diffuse = m.type == MaterialType::diffuse;
+        if (diffuse && path.direct_view == DirectView::alone) {  // the direct view ends here
+            if (m.is_emissive()) result += path.throughput * m.emission;
             break;
         }
         const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
-        const Material& m = scene_.material(hit.prim);
-        const bool diffuse = m.type == MaterialType::diffuse;
         const bool traced_from_light = light_tracing && path.shape == PathShape::caustic &&
                                        scene_.caustic_emitter().covers(hit.prim, si.p, path.self);
-        if (m.is_emissive() && !traced_from_light) {
+        if (m.is_emissive() && !traced_from_light && path.counts_found_light()) {
             // Emission found by BSDF sampling; where NEE or a light path could also have
             // found it, MIS-weight it.
             double w = 1;

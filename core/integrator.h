@@ -17,6 +17,15 @@
 
 namespace glint {
 
+// What the camera sees through specular vertices only: emitters, their images in mirrors and
+// glass, the background. Where that varies across a pixel (the light's edge) it is estimated
+// apart from the rest of the path, from more camera rays (see direct_view.h).
+enum class DirectView {
+    gathered,  // the path gathers it with everything else
+    left_out,  // the path gathers only what it finds after its first diffuse vertex
+    alone      // the path gathers only it, and ends at its first diffuse vertex
+};
+
 // The shape of a camera path so far, for handing caustic paths to light tracing.
 enum class PathShape { camera, diffuse, caustic, other };  // caustic: one diffuse, then specular+
 
@@ -34,8 +43,10 @@ public:
 
     // Radiance arriving along the camera ray, estimated with random numbers from rng; `light`
     // is this sample's light path (empty when the scene has no light tracing); `first`, if
-    // given, the numbers the path's first diffuse vertex uses instead of rng's.
-    Rgb radiance(Ray ray, Rng& rng, const LightPath& light = {}, const FirstVertexSamples* first = nullptr) const;
+    // given, the numbers the path's first diffuse vertex uses instead of rng's; `direct` how
+    // the path treats what the camera sees through specular vertices only.
+    Rgb radiance(Ray ray, Rng& rng, const LightPath& light = {}, const FirstVertexSamples* first = nullptr,
+                 DirectView direct = DirectView::gathered) const;
 
 private:
     // Where a path is: its next ray, what it carries, the vertex it leaves and how it got there.
@@ -57,6 +68,10 @@ private:
         int chain = 0;
         double chain_density = 0;
         const FirstVertexSamples* first = nullptr;  // until the first diffuse vertex has used them
+        DirectView direct_view = DirectView::gathered;
+        bool seen_directly = true;  // no diffuse vertex yet: what the path finds belongs to the direct view
+        // Whether light found now counts: the direct view's share depends on the path's part.
+        bool counts_found_light() const { return !(seen_directly && direct_view == DirectView::left_out); }
     };
     // Glass met in the first kSplitDepth bounces is split: both the reflection and the
     // refraction are followed, each weighted by its Fresnel factor, where smallpt's random pick

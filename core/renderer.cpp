@@ -27,12 +27,19 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
       tracer_(*scene_, camera_),
       film_(settings.width, settings.height),
       light_tracer_(*scene_, camera_, settings.filter, film_),
+      direct_view_(*scene_, settings.width, settings.height, scene_->integrator().direct_view_rays),
       tiles_x_((settings.width + kTileSize - 1) / kTileSize),
       tiles_y_((settings.height + kTileSize - 1) / kTileSize) {
     const uint32_t round = samples_per_round(settings_.filter);
     settings_.spp = std::max(round, (settings_.spp + round - 1) / round * round);
     if (settings_.first_sample % round != 0)
         throw std::invalid_argument("the first sample must be a multiple of " + std::to_string(round));
+}
+
+void RenderJob::film_position(int x, int y, uint32_t index, double u1, double u2, double& fx, double& fy) const {
+    const uint32_t sub = index % 4;  // smallpt's subpixel (sx, sy) = (sub mod 2, sub / 2)
+    fx = x + filter_offset(settings_.filter, sub & 1, u1);
+    fy = settings_.height - 1 - y + filter_offset(settings_.filter, sub >> 1, u2);
 }
 
 Rgb RenderJob::sample(int x, int y, uint32_t index) const {
@@ -57,10 +64,8 @@ Rgb RenderJob::sample(int x, int y, uint32_t index) const {
         u1 = rng.uniform();
         u2 = rng.uniform();
     }
-    const double row_from_bottom = settings_.height - 1 - y;
-    const uint32_t sub = index % 4;  // smallpt's subpixel (sx, sy) = (sub mod 2, sub / 2)
-    const double fx = x + filter_offset(settings_.filter, sub & 1, u1);
-    const double fy = row_from_bottom + filter_offset(settings_.filter, sub >> 1, u2);
+    double fx, fy;
+    film_position(x, y, index, u1, u2, fx, fy);
     const double lens1 = rng.uniform(), lens2 = rng.uniform();
     LightPath light;
     if (scene_->light_tracing()) {
@@ -68,7 +73,32 @@ Rgb RenderJob::sample(int x, int y, uint32_t index) const {
         Rng light_rng(settings_.seed, pixel, uint64_t(index) | (uint64_t(1) << 63));
         light = light_tracer_.trace(light_rng);
     }
-    return tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng, light, sobol ? &first : nullptr);
+    const Ray ray = camera_.generate(fx, fy, lens1, lens2);
+    if (!direct_view_.splits(x, y)) return tracer_.radiance(ray, rng, light, sobol ? &first : nullptr);
+    return tracer_.radiance(ray, rng, light, sobol ? &first : nullptr, DirectView::left_out) +
+           direct_view(x, y, index, key, rng);
+}
+
+Rgb RenderJob::direct_view(int x, int y, uint32_t index, uint64_t key, Rng& rng) const {
+    // Film positions from one more scrambled Sobol' sequence per subpixel, rays() points per
+    // round, so that all of a subpixel's rays are stratified together.
+    const uint32_t round = samples_per_round(settings_.filter), rays = uint32_t(direct_view_.rays());
+    const uint64_t subpixel_key = mix64(key ^ 0xD1EC7u) ^ (index % round);
+    Rgb sum{0};
+    for (uint32_t k = 0; k < rays; ++k) {
+        double u1, u2;
+        if (settings_.sampler == Sampler::sobol) {
+            sobol_2d(index / round * rays + k, subpixel_key, u1, u2);
+        } else {
+            u1 = rng.uniform();
+            u2 = rng.uniform();
+        }
+        double fx, fy;
+        film_position(x, y, index, u1, u2, fx, fy);
+        const double lens1 = rng.uniform(), lens2 = rng.uniform();
+        sum += tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng, {}, nullptr, DirectView::alone);
+    }
+    return sum / double(rays);
 }
 
 bool RenderJob::should_stop() const { return cancelled_ || Clock::now() >= deadline_; }
@@ -90,6 +120,14 @@ bool RenderJob::render_tile(size_t tile, uint32_t first, uint32_t last) {
 }
 
 bool RenderJob::render_pass(ThreadPool& pool, uint32_t first, uint32_t last) {
+    if (direct_view_.active() && !direct_view_decided_) {
+        pool.parallel_for(size_t(tiles_x_) * tiles_y_, [&](size_t tile) {
+            const int x0 = int(tile % tiles_x_) * kTileSize, y0 = int(tile / tiles_x_) * kTileSize;
+            direct_view_.decide(tracer_, camera_, settings_.filter, x0, y0, std::min(x0 + kTileSize, settings_.width),
+                                std::min(y0 + kTileSize, settings_.height));
+        });
+        direct_view_decided_ = true;
+    }
     std::atomic<size_t> skipped{0};
     pool.parallel_for(size_t(tiles_x_) * tiles_y_, [&](size_t tile) {
         if (!render_tile(tile, first, last)) ++skipped;

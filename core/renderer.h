@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "camera.h"
+#include "direct_view.h"
 #include "film.h"
 #include "filter.h"
 #include "image_io.h"
@@ -77,6 +78,10 @@ private:
     static constexpr int kTileSize = 16;
 
     Rgb sample(int x, int y, uint32_t index) const;
+    // The direct view of pixel (x, y) for sample `index` from direct_view_.rays() camera rays.
+    Rgb direct_view(int x, int y, uint32_t index, uint64_t key, Rng& rng) const;
+    // The film position of sample `index` of pixel (x, y) from (u1, u2).
+    void film_position(int x, int y, uint32_t index, double u1, double u2, double& fx, double& fy) const;
     bool render_tile(size_t tile, uint32_t first, uint32_t last);
     bool should_stop() const;
     uint32_t next_pass_size(uint32_t previous) const;
@@ -87,6 +92,8 @@ private:
     PathTracer tracer_;
     Film film_;
     LightTracer light_tracer_;
+    DirectViewSplit direct_view_;
+    bool direct_view_decided_ = false;
     int tiles_x_, tiles_y_;
     uint32_t spp_done_ = 0;
     uint32_t spp_at_start_ = 0;  // samples resumed from, left out of the rate

@@ -22,6 +22,9 @@ struct IntegratorSettings {
     int rr_depth = 5;            // Russian roulette after this many hits, as smallpt
     Accelerator accelerator = Accelerator::automatic;
     LightTracing light_tracing = LightTracing::automatic;
+    // Extra camera rays per sample for the direct view where it varies across a pixel
+    // (direct_view.h); 0: the camera path always gathers it, as smallpt's does.
+    int direct_view_rays = 8;
 };
 
 // Immutable once built (jobs share it across threads). Not copyable: the lights refer to the

@@ -168,11 +168,12 @@ private:
     }
 
     static IntegratorSettings parse_integrator(const At& at) {
-        at.expect_object({"light_sampling", "light_tracing", "max_depth", "rr_depth", "accelerator"});
+        at.expect_object({"light_sampling", "light_tracing", "max_depth", "rr_depth", "accelerator", "direct_view_rays"});
         IntegratorSettings s;
         if (at.has("light_sampling")) s.light_sampling = at["light_sampling"].boolean();
         if (at.has("max_depth")) s.max_depth = int(at["max_depth"].integer(1, 100000));
         if (at.has("rr_depth")) s.rr_depth = int(at["rr_depth"].integer(0, 100000));
+        if (at.has("direct_view_rays")) s.direct_view_rays = int(at["direct_view_rays"].integer(0, 64));
         if (at.has("accelerator")) {
             const std::string a = at["accelerator"].choice({"auto", "bvh", "list"});
             s.accelerator = a == "auto" ? Accelerator::automatic : a == "bvh" ? Accelerator::bvh : Accelerator::list;

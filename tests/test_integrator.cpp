@@ -66,15 +66,16 @@ TEST(Integrator, AbsorbingObjectsOnlyDarken) {
     }
 }
 
-// Light sampling with MIS (and light tracing of caustics where the scene has them), on Sobol'
-// samples, and smallpt's estimator (no light sampling, no light tracing, no BVH, independent
-// samples) estimate the same image; compare them
+// Light sampling with MIS (and light tracing of caustics where the scene has them, and the
+// direct view split off where it varies), on Sobol' samples, and smallpt's estimator (no light
+// sampling, no light tracing, no BVH, no split, independent samples) estimate the same image; compare them
 // on blocks of pixels. 4σ per block keeps the chance of a false alarm
 // over all blocks small, and the seeds are fixed, so the outcome repeats.
 void expect_same_image(nlohmann::json scene, int block) {
     scene["integrator"] = {{"light_sampling", true}};
     const auto a = render(scene_from(scene.dump()));
-    scene["integrator"] = {{"light_sampling", false}, {"accelerator", "list"}, {"light_tracing", "off"}};
+    scene["integrator"] = {
+        {"light_sampling", false}, {"accelerator", "list"}, {"light_tracing", "off"}, {"direct_view_rays", 0}};
     scene["film"]["seed"] = 99;
     scene["film"]["sampler"] = "independent";  // smallpt's samples: the Sobol' ones must not bias
     const auto b = render(scene_from(scene.dump()));

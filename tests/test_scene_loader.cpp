@@ -80,6 +80,7 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
               R"(film.sampler: must be one of "sobol", "independent" (got "halton"))");
     EXPECT_EQ(error_of(R"({"objects": [{"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0, 1, 3]]}]})"),
               "objects[0].indices[0][2]: must be in [0, 2]");
+    EXPECT_EQ(error_of(R"({"integrator": {"direct_view_rays": 65}})"), "integrator.direct_view_rays: must be in [0, 64]");
     EXPECT_EQ(error_of(R"({"objects": {}})"), "objects: must be an array");
     EXPECT_EQ(error_of(R"({"colour": 1})"),
               "colour: unknown field (expected one of: description, camera, film, integrator, objects)");

@@ -1,0 +1,46 @@
+// Splitting off the direct view (integrator.h's DirectView: what the camera sees through
+// specular vertices only) in the pixels where it varies: the light's edge, its outline in a
+// mirror or through glass. On smallpt's box those few pixels held about half of the squared
+// error at 16 spp (bench/BENCHMARKS.md), because a pixel the light half covers gets 0 or 12
+// from each sample. There each sample estimates the direct view from `rays` extra camera rays,
+// which end at their first diffuse vertex, and the sample's own path leaves it out; elsewhere
+// the path gathers it as usual. Either way the pixel's estimate is unbiased, so which pixels
+// split only decides where the extra rays are spent.
+//
+// Which pixels split is decided once per job, from a fixed grid of probe rays over each pixel's
+// filter footprint: a pixel splits if its probes see different direct views. The decision
+// depends on neither the seed nor the sample range, so the parts of a job split over machines
+// decide alike.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "camera.h"
+#include "filter.h"
+#include "integrator.h"
+
+namespace glint {
+
+class DirectViewSplit {
+public:
+    static constexpr int kProbesPerAxis = 4;
+
+    // `rays` extra camera rays per sample where a pixel splits; none splits if rays is 0 or the
+    // scene has nothing to see directly (no emitter, a black background).
+    DirectViewSplit(const Scene& scene, int width, int height, int rays);
+
+    // Whether decide() has anything to do.
+    bool active() const { return !split_.empty(); }
+    int rays() const { return rays_; }
+    // Decides for the pixels in [x0, x1) × [y0, y1) (rows from the top); disjoint regions may be
+    // decided concurrently.
+    void decide(const PathTracer& tracer, const Camera& camera, Filter filter, int x0, int y0, int x1, int y1);
+    bool splits(int x, int y) const { return active() && split_[size_t(y) * width_ + x] != 0; }
+
+private:
+    int width_, height_, rays_;
+    std::vector<uint8_t> split_;  // per pixel; empty when inactive
+};
+
+}  // namespace glint
