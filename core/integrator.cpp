@@ -83,6 +83,34 @@ Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Materi
     return value;
 }
 
+Rgb PathTracer::through_caster(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta,
+                               Rng& rng) const {
+    const double u_pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    Vec3 wi;
+    double pdf, bsdf_pdf;
+    if (!scene_.casters().sample(x.p, u_pick, u1, u2, wi, pdf)) return Rgb{0};
+    const Rgb f_cos = diffuse_f_cos(m, d, x.n, wi, bsdf_pdf);
+    if (is_black(f_cos)) return Rgb{0};
+    Rgb throughput = beta * f_cos * (power_heuristic(pdf, bsdf_pdf) / pdf);
+    Rgb result{0};
+    Ray ray = spawn_ray(x, wi);
+    uint32_t self = x.prim;
+    for (int bounces = 0;; ++bounces) {  // specular vertices behind the ray
+        Hit hit;
+        if (!scene_.geometry().intersect(ray, self, hit)) break;
+        const Material& hm = scene_.material(hit.prim);
+        if (bounces > 0) result += throughput * hm.emission;  // at 0 it is light sampling's
+        if (hm.type == MaterialType::diffuse || bounces == kMaxCasterBounces) break;
+        const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
+        const BsdfSample bs = sample_bsdf(hm, ray.d, si.n, rng);
+        throughput *= bs.weight;
+        if (is_black(throughput)) break;
+        ray = spawn_ray(si, bs.wi);
+        self = hit.prim;
+    }
+    return result;
+}
+
 double PathTracer::bounce_weight(double density_over_pi, const Ray& ray, const SurfaceInteraction& si,
                                  uint32_t last_specular) const {
     if (!(density_over_pi > 0)) return 1;
@@ -112,6 +140,13 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, bool
         const double survive = std::min(1.0, max_component(path.throughput));
         if (rng.uniform() >= survive) return false;
         path.throughput *= 1 / survive;
+    }
+    if (diffuse) {
+        path.caster_pdf = path.chain == 0 && !scene_.casters().empty() ? scene_.casters().pdf(si.p, bs.wi) : 0;
+        path.caster_bsdf_pdf = bs.pdf;
+        path.caster_bounces = 0;
+    } else {
+        ++path.caster_bounces;
     }
     path.shape = extend(path.shape, diffuse);
     path.seen_directly = path.seen_directly && !diffuse;
@@ -155,6 +190,8 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
                 w = power_heuristic(path.bsdf_pdf, scene_.lights().pdf(path.previous, path.self, si, path.previous_facing));
             else if (light_tracing && path.specular && path.chain > 0 && path.chain <= kLightVertices)
                 w = bounce_weight(path.chain_density, ray, si, path.self);
+            else if (path.caster_pdf > 0 && path.caster_bounces >= 1 && path.caster_bounces <= kMaxCasterBounces)
+                w = power_heuristic(path.caster_bsdf_pdf, path.caster_pdf);
             result += path.throughput * m.emission * w;
         }
         if (path.depth + 1 >= settings.max_depth) break;
@@ -176,6 +213,8 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
                                                                     dot(from_previous, from_previous));
                 }
                 path.chain = path.depth == 0 || path.previous_diffuse ? 1 : path.chain > 0 ? path.chain + 1 : 0;
+                if (path.chain == 0 && !scene_.casters().empty())
+                    result += through_caster(si, ray.d, m, path.throughput, rng);
             }
         }
         BsdfSample bs, reflected;

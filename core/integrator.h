@@ -68,6 +68,11 @@ private:
         int chain = 0;
         double chain_density = 0;
         const FirstVertexSamples* first = nullptr;  // until the first diffuse vertex has used them
+        // Since a diffuse vertex light tracing cannot reach (chain 0): the densities with which
+        // its bounce and the CasterSampler pick the direction the path left it by (caster_pdf 0
+        // where it does not apply), and the specular vertices met since.
+        double caster_pdf = 0, caster_bsdf_pdf = 0;
+        int caster_bounces = 0;
         DirectView direct_view = DirectView::gathered;
         bool seen_directly = true;  // no diffuse vertex yet: what the path finds belongs to the direct view
         // Whether light found now counts: the direct view's share depends on the path's part.
@@ -91,6 +96,12 @@ private:
     // (u1, u2) pick the point on the light.
     Rgb direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, const Rgb& beta, double u1,
                      double u2, Rng& rng) const;
+    // Light reaching diffuse vertex x (reached along d with throughput beta) through a mirror
+    // or glass sphere picked by the scene's CasterSampler, times f·cos, MIS-weighted against
+    // the bounce: the chain of specular vertices is followed as the path tracer would (Fresnel
+    // picks at random), for at most kMaxCasterBounces vertices.
+    Rgb through_caster(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta, Rng& rng) const;
+    static constexpr int kMaxCasterBounces = 8;
     // What reaches the eye through diffuse vertex x (reached along d with throughput beta)
     // from light vertex y, MIS-weighted against the path tracer's bounces.
     Rgb connect(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta, const LightVertex& y,

@@ -15,6 +15,7 @@ Scene::Scene(CameraSettings camera, Rgb background, IntegratorSettings integrato
     const bool pinhole = !(camera_.aperture > 0);
     if (integrator_.light_tracing != LightTracing::off && pinhole)
         caustic_emitter_ = CausticEmitter(geometry_, materials_, material_of_prim_);
+    if (!caustic_emitter_.empty()) casters_ = CasterSampler(geometry_, materials_, material_of_prim_);
 }
 
 }  // namespace glint

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "camera.h"
+#include "caster_sampler.h"
 #include "caustic_emitter.h"
 #include "geometry.h"
 #include "lights.h"
@@ -44,6 +45,9 @@ public:
     // Whether light tracing takes the caustic paths, and where its paths start (empty if not).
     bool light_tracing() const { return !caustic_emitter_.empty(); }
     const CausticEmitter& caustic_emitter() const { return caustic_emitter_; }
+    // With light tracing: the mirror and glass spheres, sampled from the diffuse points the
+    // camera sees only through specular vertices (where light tracing cannot reach).
+    const CasterSampler& casters() const { return casters_; }
     const Material& material(uint32_t prim) const { return materials_[material_of_prim_[prim]]; }
 
 private:
@@ -55,6 +59,7 @@ private:
     std::vector<uint32_t> material_of_prim_;
     LightSet lights_;
     CausticEmitter caustic_emitter_;
+    CasterSampler casters_;
 };
 
 }  // namespace glint
