@@ -1,5 +1,7 @@
 #include "direct_view.h"
 
+#include <cmath>
+
 #include "rng.h"
 
 namespace glint {
@@ -10,27 +12,40 @@ DirectViewSplit::DirectViewSplit(const Scene& scene, int width, int height, int 
         split_.assign(size_t(width) * height, 0);
 }
 
+Rgb DirectViewSplit::probe(const PathTracer& tracer, const Camera& camera, double fx, double fy, uint64_t key) {
+    Rng rng(0, key, 0);  // for a lens and deep glass: fixed, not the job's seed
+    const double lens1 = rng.uniform(), lens2 = rng.uniform();
+    return tracer.radiance(camera.generate(fx, fy, lens1, lens2), rng, {}, nullptr, DirectView::alone);
+}
+
 void DirectViewSplit::decide(const PathTracer& tracer, const Camera& camera, Filter filter, int x0, int y0, int x1,
                              int y1) {
     if (!active()) return;
-    // Probe centres spread evenly over the footprint [-margin, 1 + margin]² of the pixel.
-    const double margin = filter_margin(filter), step = (1 + 2 * margin) / kProbesPerAxis;
+    // The footprint [-margin, 1 + margin] of a pixel holds probes 0..3 of the pixel, spaced so
+    // that the next pixel's start `per_pixel` probes further on: 2 per pixel for the tent's 1.5
+    // pixels, 3 for the box's 1.
+    const double margin = filter_margin(filter), spacing = (1 + 2 * margin) / (kProbesPerFootprint - 1);
+    const int per_pixel = int(std::lround(1 / spacing));
+    const int columns = (x1 - x0 - 1) * per_pixel + kProbesPerFootprint, rows = (y1 - y0 - 1) * per_pixel + kProbesPerFootprint;
+    const uint64_t grid_width = uint64_t(width_ - 1) * per_pixel + kProbesPerFootprint;
+    std::vector<Rgb> seen(size_t(columns) * rows);
+    for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < columns; ++i) {
+            // Rows of probes, like pixels, from the top; the film's y counts from the bottom.
+            const int gx = x0 * per_pixel + i, gy = y0 * per_pixel + j;
+            const double fx = gx * spacing - margin, fy = height_ + margin - gy * spacing;
+            seen[size_t(j) * columns + i] = probe(tracer, camera, fx, fy, uint64_t(gy) * grid_width + gx);
+        }
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) {
-            const uint64_t pixel = uint64_t(y) * width_ + x;
-            const double row_from_bottom = height_ - 1 - y;
-            Rgb first{0};
+            const Rgb* corner = &seen[size_t(y - y0) * per_pixel * columns + size_t(x - x0) * per_pixel];
             bool varies = false;
-            for (int i = 0; i < kProbesPerAxis * kProbesPerAxis && !varies; ++i) {
-                Rng rng(0, pixel, uint64_t(i));  // for a lens and deep glass: fixed, not the job's seed
-                const double fx = x - margin + (i % kProbesPerAxis + 0.5) * step;
-                const double fy = row_from_bottom - margin + (i / kProbesPerAxis + 0.5) * step;
-                const Ray ray = camera.generate(fx, fy, rng.uniform(), rng.uniform());
-                const Rgb seen = tracer.radiance(ray, rng, {}, nullptr, DirectView::alone);
-                if (i == 0) first = seen;
-                varies = seen.x != first.x || seen.y != first.y || seen.z != first.z;
-            }
-            split_[pixel] = varies;
+            for (int j = 0; j < kProbesPerFootprint; ++j)
+                for (int i = 0; i < kProbesPerFootprint; ++i) {
+                    const Rgb& v = corner[size_t(j) * columns + i];
+                    varies = varies || v.x != corner->x || v.y != corner->y || v.z != corner->z;
+                }
+            split_[size_t(y) * width_ + x] = varies;
         }
 }
 

@@ -7,10 +7,11 @@
 // the path gathers it as usual. Either way the pixel's estimate is unbiased, so which pixels
 // split only decides where the extra rays are spent.
 //
-// Which pixels split is decided once per job, from a fixed grid of probe rays over each pixel's
-// filter footprint: a pixel splits if its probes see different direct views. The decision
-// depends on neither the seed nor the sample range, so the parts of a job split over machines
-// decide alike.
+// Which pixels split is decided once per job, from probe rays on a grid over the film: a pixel
+// splits if the 4 × 4 probes spanning its filter footprint see different direct views.
+// Neighbouring footprints overlap, and the grid is laid so they share their probes (half-pixel
+// spacing for the tent filter: 4 probes per pixel). The decision depends on neither the seed nor
+// the sample range, so the parts of a job split over machines decide alike.
 #pragma once
 
 #include <cstdint>
@@ -24,7 +25,7 @@ namespace glint {
 
 class DirectViewSplit {
 public:
-    static constexpr int kProbesPerAxis = 4;
+    static constexpr int kProbesPerFootprint = 4;  // along each axis
 
     // `rays` extra camera rays per sample where a pixel splits; none splits if rays is 0 or the
     // scene has nothing to see directly (no emitter, a black background).
@@ -39,6 +40,9 @@ public:
     bool splits(int x, int y) const { return active() && split_[size_t(y) * width_ + x] != 0; }
 
 private:
+    // The direct view seen at film position (fx, fy); `key` names the probe.
+    static Rgb probe(const PathTracer& tracer, const Camera& camera, double fx, double fy, uint64_t key);
+
     int width_, height_, rays_;
     std::vector<uint8_t> split_;  // per pixel; empty when inactive
 };
