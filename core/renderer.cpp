@@ -62,12 +62,12 @@ Rgb RenderJob::sample(int x, int y, uint32_t index) const {
     const double fx = x + filter_offset(settings_.filter, sub & 1, u1);
     const double fy = row_from_bottom + filter_offset(settings_.filter, sub >> 1, u2);
     const double lens1 = rng.uniform(), lens2 = rng.uniform();
-    LightPath light;
-    if (scene_->light_tracing()) {
-        // One light path per camera sample, on its own stream keyed like the sample's.
+    // One light path per camera sample, on its own stream keyed like the sample's; initialised
+    // from trace()'s result in place, where assigning it copied its four vertices (~560 bytes).
+    const LightPath light = scene_->light_tracing() ? [&] {
         Rng light_rng(settings_.seed, pixel, uint64_t(index) | (uint64_t(1) << 63));
-        light = light_tracer_.trace(light_rng);
-    }
+        return light_tracer_.trace(light_rng);
+    }() : LightPath{};
     return tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng, light, sobol ? &first : nullptr);
 }
 
