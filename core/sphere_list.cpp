@@ -63,6 +63,17 @@ __m256d lanes_of(__m256i ids, uint32_t index) {
 const __m256i kFirstIds = _mm256_setr_epi64x(0, 1, 2, 3);
 const __m256i kGroupStep = _mm256_set1_epi64x(4);
 
+// Of two (t, sphere) pairs per lane, the nearer, of equal t the higher sphere index: the order
+// in which a scalar loop narrowing tmax with `<=` leaves its answer. A lane without a hit holds
+// (tmax, -1), which every hit within tmax beats.
+void keep_nearer(__m256d& t, __m256i& found, __m256d other_t, __m256i other_found) {
+    const __m256d take = _mm256_or_pd(
+        _mm256_cmp_pd(other_t, t, _CMP_LT_OQ),
+        _mm256_and_pd(_mm256_cmp_pd(other_t, t, _CMP_EQ_OQ), _mm256_castsi256_pd(_mm256_cmpgt_epi64(other_found, found))));
+    t = _mm256_blendv_pd(t, other_t, take);
+    found = _mm256_castpd_si256(_mm256_blendv_pd(_mm256_castsi256_pd(found), _mm256_castsi256_pd(other_found), take));
+}
+
 }  // namespace
 
 SphereList::SphereList(const std::vector<Sphere>& spheres) : groups_((spheres.size() + 3) / 4) {
@@ -77,31 +88,26 @@ SphereList::SphereList(const std::vector<Sphere>& spheres) : groups_((spheres.si
 }
 
 // Each lane keeps the nearest hit among its spheres (of equal ones the later, as `<=` in index
-// order decides) and which sphere that is; one pass over the four lanes at the end picks the
-// nearest, of equal ones the highest index: the scalar loop's answer, without a branch per hit.
+// order decides) and which sphere that is; then the lanes are reduced pairwise in the same
+// order: the scalar loop's answer, without a branch per hit.
 int SphereList::closest(const Ray& ray, uint32_t self, double& t) const {
     __m256i ids = kFirstIds;
     __m256d nearest = _mm256_set1_pd(ray.tmax);
-    __m256d found = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+    __m256i found = _mm256_set1_epi64x(-1);
     for (const Group& group : groups_) {
         const Lanes lanes = intersect(ray, group.cx, group.cy, group.cz, group.radius, lanes_of(ids, self));
         const __m256d nearer = _mm256_and_pd(lanes.hit, _mm256_cmp_pd(lanes.t, nearest, _CMP_LE_OQ));
         nearest = _mm256_blendv_pd(nearest, lanes.t, nearer);
-        found = _mm256_blendv_pd(found, _mm256_castsi256_pd(ids), nearer);
+        found = _mm256_castpd_si256(_mm256_blendv_pd(_mm256_castsi256_pd(found), _mm256_castsi256_pd(ids), nearer));
         ids = _mm256_add_epi64(ids, kGroupStep);
     }
-    alignas(32) double lane_t[4];
-    alignas(32) int64_t lane_found[4];
-    _mm256_store_pd(lane_t, nearest);
-    _mm256_store_si256(reinterpret_cast<__m256i*>(lane_found), _mm256_castpd_si256(found));
-    int64_t best = -1;
-    t = ray.tmax;
-    for (int lane = 0; lane < 4; ++lane)
-        if (lane_found[lane] >= 0 && (lane_t[lane] < t || (lane_t[lane] == t && lane_found[lane] > best))) {
-            t = lane_t[lane];
-            best = lane_found[lane];
-        }
-    return static_cast<int>(best);
+    // Lanes 0, 1 against 2, 3, then 0 against 1.
+    keep_nearer(nearest, found, _mm256_permute2f128_pd(nearest, nearest, 1),
+                _mm256_permute2f128_si256(found, found, 1));
+    keep_nearer(nearest, found, _mm256_permute_pd(nearest, 0b0101),
+                _mm256_castpd_si256(_mm256_permute_pd(_mm256_castsi256_pd(found), 0b0101)));
+    t = _mm256_cvtsd_f64(nearest);
+    return static_cast<int>(_mm256_extract_epi64(found, 0));
 }
 
 bool SphereList::any(const Ray& ray, uint32_t self, uint32_t target) const {
