@@ -15,7 +15,7 @@ DirectViewSplit::DirectViewSplit(const Scene& scene, int width, int height, int 
 Rgb DirectViewSplit::probe(const PathTracer& tracer, const Camera& camera, double fx, double fy, uint64_t key) {
     Rng rng(0, key, 0);  // for a lens and deep glass: fixed, not the job's seed
     const double lens1 = rng.uniform(), lens2 = rng.uniform();
-    return tracer.radiance(camera.generate(fx, fy, lens1, lens2), rng, {}, nullptr, DirectView::alone);
+    return tracer.radiance(camera.generate(fx, fy, lens1, lens2), rng, kNoLightPath, nullptr, DirectView::alone);
 }
 
 void DirectViewSplit::decide(const PathTracer& tracer, const Camera& camera, Filter filter, int x0, int y0, int x1,

@@ -45,7 +45,7 @@ public:
     // is this sample's light path (empty when the scene has no light tracing); `first`, if
     // given, the numbers the path's first diffuse vertex uses instead of rng's; `direct` how
     // the path treats what the camera sees through specular vertices only.
-    Rgb radiance(Ray ray, Rng& rng, const LightPath& light = {}, const FirstVertexSamples* first = nullptr,
+    Rgb radiance(Ray ray, Rng& rng, const LightPath& light = kNoLightPath, const FirstVertexSamples* first = nullptr,
                  DirectView direct = DirectView::gathered) const;
 
 private:

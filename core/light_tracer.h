@@ -50,6 +50,8 @@ struct LightPath {
     LightVertex vertices[kLightVertices];  // from the light: y, then the later ones
     int size = 0;
 };
+// For camera paths without one: shared, since building an empty path writes ~600 bytes.
+inline const LightPath kNoLightPath{};
 
 class LightTracer {
 public:

@@ -18,16 +18,22 @@ LightSet::LightSet(const Geometry& geometry, const std::vector<Material>& materi
         if (!(area > 0)) continue;
         light_of_prim_[prim] = static_cast<uint32_t>(lights_.size());
         Light light{prim, m.emission};
-        light.occluders_begin = light.occluders_end = static_cast<uint32_t>(occluders_.size());
+        light.caps_begin = static_cast<uint32_t>(caps_.size());
         for (uint32_t o = 0; geometry.is_sphere(prim) && o < geometry.sphere_count(); ++o) {
             if (o == prim || materials[material_of_prim[o]].type == MaterialType::glass) continue;
-            Occluder occ{o, {}, {}};
-            if (SphereCap::beside(geometry.sphere(prim), geometry.sphere(o), true, occ.inside) &&
-                SphereCap::beside(geometry.sphere(prim), geometry.sphere(o), false, occ.outside)) {
-                occluders_.push_back(occ);
-                ++light.occluders_end;
+            OccludedCap inside{o, true, {}}, outside{o, false, {}};
+            if (SphereCap::beside(geometry.sphere(prim), geometry.sphere(o), true, inside.cap) &&
+                SphereCap::beside(geometry.sphere(prim), geometry.sphere(o), false, outside.cap)) {
+                caps_.push_back(inside);
+                caps_.push_back(outside);
             }
         }
+        light.caps_end = static_cast<uint32_t>(caps_.size());
+        // Smallest first, so that visible_cap can stop at the first cap on p's side; stable, so
+        // that of equal caps the first occluder's is chosen, whatever the sort.
+        std::stable_sort(caps_.begin() + light.caps_begin, caps_.end(), [](const OccludedCap& a, const OccludedCap& b) {
+            return a.cap.one_minus_cos < b.cap.one_minus_cos;
+        });
         lights_.push_back(light);
         power.push_back(area * std::max(luminance(m.emission), 1e-300));
     }
@@ -43,42 +49,54 @@ double LightSet::pick_probability(size_t light) const {
 
 // Seen from outside, a sphere is sampled within its cone; from inside, or from a point on its
 // own surface (where inside/outside is decided by rounding), by area over the whole sphere.
-bool LightSet::sees_as_cone(const Vec3& p, uint32_t self, uint32_t prim) const {
-    if (!geometry_->is_sphere(prim) || prim == self) return false;
+double LightSet::cone_distance(const Vec3& p, uint32_t self, uint32_t prim) const {
+    if (!geometry_->is_sphere(prim) || prim == self) return 0;
     const Sphere& s = geometry_->sphere(prim);
-    return length(p - s.centre) > s.radius;
+    const double distance = length(p - s.centre);
+    return distance > s.radius ? distance : 0;
 }
 
-bool LightSet::visible_cap(const Vec3& p, uint32_t self, const Vec3& facing, const Light& light,
-                           SphereCap& cap) const {
-    const Sphere& s = geometry_->sphere(light.prim);
-    double best = 1 - s.radius / length(p - s.centre);  // the horizon
-    bool found = false;
-    for (uint32_t i = light.occluders_begin; i < light.occluders_end; ++i) {
-        const Occluder& occ = occluders_[i];
-        const Sphere& o = geometry_->sphere(occ.prim);
-        bool inside = length(p - o.centre) < o.radius;
-        if (occ.prim == self) {
+// The caps come smallest first, so the first on p's side is the smallest p can see: in smallpt's
+// box, from anywhere inside it, the first (the ceiling's), found with one distance test instead
+// of a square root for each of the five walls.
+const SphereCap* LightSet::visible_cap(const Vec3& p, uint32_t self, const Vec3& facing, const Light& light,
+                                       double distance) const {
+    for (uint32_t i = light.caps_begin; i < light.caps_end; ++i) {
+        const OccludedCap& c = caps_[i];
+        const Sphere& o = geometry_->sphere(c.occluder);
+        bool inside;
+        if (c.occluder == self) {
             // p on its surface: rounding cannot tell the side, the side p looks from can.
             if (is_black(facing)) continue;
             inside = dot(facing, o.centre - p) > 0;
+        } else {
+            const Vec3 from_centre = p - o.centre;
+            inside = dot(from_centre, from_centre) < o.radius * o.radius;
         }
-        const SphereCap& side = inside ? occ.inside : occ.outside;
-        if (side.one_minus_cos < best) {
-            best = side.one_minus_cos;
-            cap = side;
-            found = true;
-        }
+        if (inside != c.inside) continue;
+        const double horizon = 1 - geometry_->sphere(light.prim).radius / distance;
+        return c.cap.one_minus_cos < horizon ? &c.cap : nullptr;
     }
-    return found;
+    return nullptr;
+}
+
+double LightSet::area_pdf_to_solid_angle(double dist2, double cos_light, double area) {
+    if (!(cos_light > 0) || !(dist2 > 0)) return 0;
+    return dist2 / (cos_light * area);
 }
 
 double LightSet::area_pdf_to_solid_angle(const Vec3& p, const Vec3& q, const Vec3& nq, double area) {
     const Vec3 to = q - p;
     const double dist2 = dot(to, to);
-    const double cos_light = std::fabs(dot(nq, to)) / std::sqrt(dist2);
-    if (!(cos_light > 0) || !(dist2 > 0)) return 0;
-    return dist2 / (cos_light * area);
+    return area_pdf_to_solid_angle(dist2, std::fabs(dot(nq, to)) / std::sqrt(dist2), area);
+}
+
+double LightSet::toward(const Vec3& p, const Vec3& q, const Vec3& nq, double area, LightSample& out) {
+    const Vec3 to = q - p;
+    const double dist2 = dot(to, to);
+    out.distance = std::sqrt(dist2);
+    out.wi = to / out.distance;
+    return area_pdf_to_solid_angle(dist2, std::fabs(dot(nq, to)) / out.distance, area);
 }
 
 bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, double u2, LightSample& out,
@@ -90,19 +108,17 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, do
     out.prim = light.prim;
     out.emission = light.emission;
     double pdf;
-    SphereCap cap;
-    if (sees_as_cone(p, self, light.prim) && visible_cap(p, self, facing, light, cap)) {
+    const double dc = cone_distance(p, self, light.prim);
+    const SphereCap* cap = dc > 0 ? visible_cap(p, self, facing, light, dc) : nullptr;
+    if (cap) {
         const Sphere& s = geometry_->sphere(light.prim);
-        const Vec3 n = cap.sample(u1, u2);
+        const Vec3 n = cap->sample(u1, u2);
         const Vec3 q = s.centre + n * s.radius;
         if (!(dot(n, p - q) > 0)) return false;  // on the far side: the light hides it
-        pdf = area_pdf_to_solid_angle(p, q, n, cap.area(s));
-        out.distance = length(q - p);
-        out.wi = (q - p) / out.distance;
-    } else if (sees_as_cone(p, self, light.prim)) {
+        pdf = toward(p, q, n, cap->area(s), out);
+    } else if (dc > 0) {
         const Sphere& s = geometry_->sphere(light.prim);
         const Vec3 axis = s.centre - p;
-        const double dc = length(axis);
         const Cone cone = Cone::subtended(s.radius, dc);
         double sin2_theta;
         const Vec3 local = cone.sample(u1, u2, sin2_theta);
@@ -116,18 +132,13 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, do
     } else if (geometry_->is_sphere(light.prim)) {
         const Sphere& s = geometry_->sphere(light.prim);
         const Vec3 n = sample_uniform_sphere(u1, u2);
-        const Vec3 q = s.centre + n * s.radius;
-        pdf = area_pdf_to_solid_angle(p, q, n, s.area());
-        out.distance = length(q - p);
-        out.wi = (q - p) / out.distance;
+        pdf = toward(p, s.centre + n * s.radius, n, s.area(), out);
     } else {
         if (light.prim == self) return false;  // a flat light cannot light itself
         const Triangle& t = geometry_->triangle(light.prim);
         const Vec3 b = sample_uniform_triangle(u1, u2);
         const Vec3 q = t.v0 * b.x + t.v1 * b.y + t.v2 * b.z;
-        pdf = area_pdf_to_solid_angle(p, q, normalize(t.unnormalized_normal()), t.area());
-        out.distance = length(q - p);
-        out.wi = (q - p) / out.distance;
+        pdf = toward(p, q, normalize(t.unnormalized_normal()), t.area(), out);
     }
     out.pdf = pdf * pick_probability(index);
     return out.pdf > 0 && std::isfinite(out.pdf) && out.distance > 0;
@@ -137,14 +148,14 @@ double LightSet::pdf(const Vec3& p, uint32_t self, const SurfaceInteraction& hit
     const uint32_t index = light_of_prim_[hit.prim];
     if (index == kNoLight) return 0;
     double pdf;
-    SphereCap cap;
-    if (sees_as_cone(p, self, hit.prim) && visible_cap(p, self, facing, lights_[index], cap)) {
+    const double dc = cone_distance(p, self, hit.prim);
+    const SphereCap* cap = dc > 0 ? visible_cap(p, self, facing, lights_[index], dc) : nullptr;
+    if (cap) {
         const Sphere& s = geometry_->sphere(hit.prim);
-        if (!cap.contains(s, hit.p) || !(dot(hit.n, p - hit.p) > 0)) return 0;
-        pdf = area_pdf_to_solid_angle(p, hit.p, hit.n, cap.area(s));
-    } else if (sees_as_cone(p, self, hit.prim)) {
-        const Sphere& s = geometry_->sphere(hit.prim);
-        pdf = Cone::subtended(s.radius, length(s.centre - p)).pdf();
+        if (!cap->contains(s, hit.p) || !(dot(hit.n, p - hit.p) > 0)) return 0;
+        pdf = area_pdf_to_solid_angle(p, hit.p, hit.n, cap->area(s));
+    } else if (dc > 0) {
+        pdf = Cone::subtended(geometry_->sphere(hit.prim).radius, dc).pdf();
     } else if (geometry_->is_sphere(hit.prim)) {
         pdf = area_pdf_to_solid_angle(p, hit.p, hit.n, geometry_->sphere(hit.prim).area());
     } else {

@@ -43,24 +43,32 @@ private:
     struct Light {
         uint32_t prim;
         Rgb emission;
-        uint32_t occluders_begin = 0, occluders_end = 0;  // into occluders_
+        uint32_t caps_begin = 0, caps_end = 0;  // into caps_
     };
-    // An opaque sphere whose surface cuts a sphere light, and the light's caps on either side.
-    struct Occluder {
-        uint32_t prim;
-        SphereCap inside, outside;
+    // An opaque sphere whose surface cuts a sphere light, and the light's cap on one side of it:
+    // from that side only the cap can be seen.
+    struct OccludedCap {
+        uint32_t occluder;
+        bool inside;  // the side: inside the occluder or outside
+        SphereCap cap;
     };
     // The smallest cap of the light that holds every point p can see, if smaller than the
-    // light's horizon from p.
-    bool visible_cap(const Vec3& p, uint32_t self, const Vec3& facing, const Light& light, SphereCap& cap) const;
-    // Density of picking a point on the light by area, converted to solid angle at p.
+    // light's horizon from p (p lies at distance `distance` from the light's centre).
+    const SphereCap* visible_cap(const Vec3& p, uint32_t self, const Vec3& facing, const Light& light,
+                                 double distance) const;
+    // Density of picking a point on the light by area, converted to solid angle at p (q at
+    // squared distance dist2, cos_light the cosine at q).
+    static double area_pdf_to_solid_angle(double dist2, double cos_light, double area);
     static double area_pdf_to_solid_angle(const Vec3& p, const Vec3& q, const Vec3& nq, double area);
-    bool sees_as_cone(const Vec3& p, uint32_t self, uint32_t prim) const;
+    // The same for a sampled point q (normal nq), whose direction and distance from p it puts in `out`.
+    static double toward(const Vec3& p, const Vec3& q, const Vec3& nq, double area, LightSample& out);
+    // The distance from p to the centre of sphere light `prim` if p sees it as a cone, else 0.
+    double cone_distance(const Vec3& p, uint32_t self, uint32_t prim) const;
     double pick_probability(size_t light) const;
 
     const Geometry* geometry_ = nullptr;
     std::vector<Light> lights_;
-    std::vector<Occluder> occluders_;
+    std::vector<OccludedCap> caps_;  // each light's, smallest first
     std::vector<double> cdf_;                // cumulative power, normalised; cdf_.back() == 1
     std::vector<uint32_t> light_of_prim_;    // kNoLight where the primitive does not emit
     static constexpr uint32_t kNoLight = 0xFFFFFFFFu;

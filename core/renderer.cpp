@@ -67,12 +67,12 @@ Rgb RenderJob::sample(int x, int y, uint32_t index) const {
     double fx, fy;
     film_position(x, y, index, u1, u2, fx, fy);
     const double lens1 = rng.uniform(), lens2 = rng.uniform();
-    LightPath light;
-    if (scene_->light_tracing()) {
-        // One light path per camera sample, on its own stream keyed like the sample's.
+    // One light path per camera sample, on its own stream keyed like the sample's; initialised
+    // from trace()'s result in place, where assigning it copied its four vertices (~560 bytes).
+    const LightPath light = scene_->light_tracing() ? [&] {
         Rng light_rng(settings_.seed, pixel, uint64_t(index) | (uint64_t(1) << 63));
-        light = light_tracer_.trace(light_rng);
-    }
+        return light_tracer_.trace(light_rng);
+    }() : LightPath{};
     const Ray ray = camera_.generate(fx, fy, lens1, lens2);
     if (!direct_view_.splits(x, y)) return tracer_.radiance(ray, rng, light, sobol ? &first : nullptr);
     return tracer_.radiance(ray, rng, light, sobol ? &first : nullptr, DirectView::left_out) +
@@ -96,7 +96,7 @@ Rgb RenderJob::direct_view(int x, int y, uint32_t index, uint64_t key, Rng& rng)
         double fx, fy;
         film_position(x, y, index, u1, u2, fx, fy);
         const double lens1 = rng.uniform(), lens2 = rng.uniform();
-        sum += tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng, {}, nullptr, DirectView::alone);
+        sum += tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng, kNoLightPath, nullptr, DirectView::alone);
     }
     return sum / double(rays);
 }

@@ -25,12 +25,12 @@ public:
     bool any(const Ray& ray, uint32_t self, uint32_t target) const;
 
 private:
-    // Four spheres, coordinate by coordinate; lanes past the last sphere are never hits.
+    // Four spheres, coordinate by coordinate; lanes past the last sphere have a NaN radius,
+    // which never hits.
     struct alignas(32) Group {
         double cx[4], cy[4], cz[4], radius[4];
     };
     std::vector<Group> groups_;
-    uint32_t count_ = 0;
 };
 
 }  // namespace glint

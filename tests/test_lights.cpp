@@ -136,47 +136,90 @@ struct LightThroughCeiling {
     LightSet lights{geometry, materials, material_of_prim};
 };
 
-TEST(Lights, LightCutByAnOpaqueSphereIsSampledOnTheVisibleCap) {
-    const LightThroughCeiling scene;
-    const Vec3 p{50, 0, 81.6}, n{0, 1, 0};
+// Light arriving at p (on primitive `self`, facing the side `n` points to) from light `light`
+// through whatever lies between, by next-event estimation with shadow rays: the mean of L·cos/pdf
+// and the fraction of samples that reach the light. Each sample's pdf is checked against the
+// one MIS uses for the same point.
+struct Direct {
+    Estimate estimate;
+    double reached;
+};
+Direct direct_by_light_sampling(const Geometry& geometry, const LightSet& lights, const Vec3& p, const Vec3& n,
+                                uint32_t self, uint32_t light, int count) {
     Rng rng(25, 0, 0);
-    const int count = 20000;
+    const Vec3 facing = self == kNoPrimitive ? Vec3{} : n;
     double sum = 0, sum_sq = 0;
     int sampled = 0;
     for (int i = 0; i < count; ++i) {
         LightSample ls;
         double value = 0;
-        if (scene.lights.sample(p, kNoPrimitive, rng.uniform(), rng.uniform(), rng.uniform(), ls)) {
+        if (lights.sample(p, self, rng.uniform(), rng.uniform(), rng.uniform(), ls, facing)) {
             Ray shadow{p, ls.wi, 0, ls.distance};
-            if (!scene.geometry.occluded(shadow, kNoPrimitive, ls.prim)) {
+            if (!geometry.occluded(shadow, self, ls.prim)) {
                 ++sampled;
                 value = ls.emission.x * std::max(0.0, dot(ls.wi, n)) / ls.pdf;
-                // The density MIS uses for the same point agrees.
                 Hit hit;
                 Ray ray{p, ls.wi, 0, ls.distance * (1 + 1e-9)};
-                EXPECT_TRUE(scene.geometry.intersect(ray, kNoPrimitive, hit) && hit.prim == 0);
-                EXPECT_NEAR(scene.lights.pdf(p, kNoPrimitive, scene.geometry.interaction(ray, hit)), ls.pdf, 1e-6 * ls.pdf);
+                EXPECT_TRUE(geometry.intersect(ray, self, hit) && hit.prim == light);
+                EXPECT_NEAR(lights.pdf(p, self, geometry.interaction(ray, hit), facing), ls.pdf, 1e-6 * ls.pdf)
+                    << p.x << " " << p.y << " " << p.z;
             }
         }
         sum += value;
         sum_sq += value * value;
     }
-    // Nearly every sample lands on the visible disc (the whole cone would find it ~5% of the time).
-    EXPECT_GT(sampled, count * 9 / 10);
-    const double mean = sum / count, sigma = std::sqrt((sum_sq / count - mean * mean) / count);
-    // Brute force: cosine-weighted rays from p, π·L times the fraction that reach the light.
-    Rng brute_rng(26, 0, 0);
+    const double mean = sum / count;
+    return {{mean, std::sqrt((sum_sq / count - mean * mean) / count)}, double(sampled) / count};
+}
+
+// The same by brute force: cosine-weighted rays from p, π·L times the fraction that reach the light.
+Estimate direct_by_brute_force(const Geometry& geometry, const Vec3& p, const Vec3& n, uint32_t self, uint32_t light,
+                               double radiance, int count) {
+    Rng rng(26, 0, 0);
     const Frame frame = Frame::around(n);
     int hits = 0;
-    const int brute_count = 400000;
-    for (int i = 0; i < brute_count; ++i) {
+    for (int i = 0; i < count; ++i) {
         Hit hit;
-        const Ray ray{p, frame.to_world(sample_cosine_hemisphere(brute_rng.uniform(), brute_rng.uniform()))};
-        hits += scene.geometry.intersect(ray, kNoPrimitive, hit) && hit.prim == 0;
+        const Ray ray{p, frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()))};
+        hits += geometry.intersect(ray, self, hit) && hit.prim == light;
     }
-    const double f = double(hits) / brute_count, brute = 12 * kPi * f,
-                 brute_sigma = 12 * kPi * std::sqrt(f * (1 - f) / brute_count);
-    EXPECT_NEAR(mean, brute, 4 * std::hypot(sigma, brute_sigma));
+    const double f = double(hits) / count;
+    return {radiance * kPi * f, radiance * kPi * std::sqrt(f * (1 - f) / count)};
+}
+
+TEST(Lights, LightCutByAnOpaqueSphereIsSampledOnTheVisibleCap) {
+    const LightThroughCeiling scene;
+    const Vec3 p{50, 0, 81.6}, n{0, 1, 0};
+    const Direct nee = direct_by_light_sampling(scene.geometry, scene.lights, p, n, kNoPrimitive, 0, 20000);
+    // Nearly every sample lands on the visible disc (the whole cone would find it ~5% of the time).
+    EXPECT_GT(nee.reached, 0.9);
+    const Estimate brute = direct_by_brute_force(scene.geometry, p, n, kNoPrimitive, 0, 12, 400000);
+    EXPECT_NEAR(nee.estimate.mean, brute.mean, 4 * std::hypot(nee.estimate.sigma, brute.sigma));
+}
+
+// smallpt's light is cut by five walls; which of their caps holds what a point sees depends on
+// the point's side of each wall (LightSet keeps them smallest first and takes the first on that
+// side). Inside the box that is the ceiling's hole; above the ceiling and beyond the right wall,
+// the part of the light above the ceiling and beyond that wall; on the left wall (its own
+// sphere, where the side comes from the normal) the hole again.
+TEST(Lights, LightCutBySeveralWallsIsSampledOnTheCapEachPointSees) {
+    const LoadedScene loaded = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    const Geometry& geometry = loaded.scene->geometry();
+    const LightSet& lights = loaded.scene->lights();
+    constexpr uint32_t kLeftWall = 0, kLight = 8;
+    struct Case {
+        Vec3 p, n;
+        uint32_t self;
+    };
+    for (const Case& c : {Case{{50, 40, 81.6}, {0, 1, 0}, kNoPrimitive}, Case{{2, 60, 2}, normalize({1, 1, 1}), kNoPrimitive},
+                          Case{{700, 100, 81.6}, normalize({-1, 1, 0}), kNoPrimitive},
+                          Case{{1, 60, 81.6}, {1, 0, 0}, kLeftWall}}) {
+        const Direct nee = direct_by_light_sampling(geometry, lights, c.p, c.n, c.self, kLight, 20000);
+        EXPECT_GT(nee.reached, 0.4) << c.p.x << " " << c.p.y << " " << c.p.z;
+        const Estimate brute = direct_by_brute_force(geometry, c.p, c.n, c.self, kLight, 12, 400000);
+        EXPECT_NEAR(nee.estimate.mean, brute.mean, 4 * std::hypot(nee.estimate.sigma, brute.sigma))
+            << c.p.x << " " << c.p.y << " " << c.p.z;
+    }
 }
 
 TEST(Lights, CausticEmitterPdfAgreesWithItsSamples) {

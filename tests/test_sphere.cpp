@@ -120,13 +120,13 @@ namespace glint {
 namespace {
 
 // The list's four-lane test must answer as a scalar loop over Sphere::intersect does, bit for
-// bit: seven spheres (a partial last group) from smallpt's walls to a speck, two of them equal
-// (a tie the last must win), rays from random points, from points on the spheres (leaving
-// them), and along the axes.
+// bit: nine spheres (a last group of one) from smallpt's walls to a speck, three of them equal
+// (a tie the last must win: indices 3 and 7 share a lane, 4 has another), rays from random
+// points, from points on the spheres (leaving them), and along the axes.
 TEST(SphereList, AnswersAsTheScalarTestBitForBit) {
     const std::vector<Sphere> spheres{kWall, {{50, 40.8, -1e5 + 170}, 1e5}, {{27, 16.5, 47}, 16.5},
                                       {{73, 16.5, 78}, 16.5}, {{73, 16.5, 78}, 16.5}, {{50, 30, 60}, 1e-3},
-                                      {{50, 681.33, 81.6}, 600}};
+                                      {{50, 681.33, 81.6}, 600}, {{73, 16.5, 78}, 16.5}, {{-99901, 40.8, 81.6}, 1e5}};
     const SphereList list(spheres);
     Rng rng(7, 0, 0);
     int hits = 0, self_hits = 0;
