@@ -12,6 +12,24 @@ Camera::Camera(const CameraSettings& settings, int width, int height)
     up_ = normalize(cross(right, settings.direction)) * film_height;
 }
 
+bool Camera::may_see(const Bounds3& box, double margin) const {
+    if (!is_pinhole()) return true;
+    // A point eye + a·right + b·up + c·direction is in the pyramid when |a| <= kx·c and
+    // |b| <= ky·c: four half-spaces through the eye, which together exclude everything behind it.
+    const double kx = 0.5 + margin / width_, ky = 0.5 + margin / height_;
+    const double right2 = dot(right_, right_), up2 = dot(up_, up_);
+    unsigned outside_all = 0xF;  // sides every corner so far is beyond
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p{corner & 1 ? box.hi.x : box.lo.x, corner & 2 ? box.hi.y : box.lo.y, corner & 4 ? box.hi.z : box.lo.z};
+        const Vec3 v = p - settings_.position;
+        const double a = dot(v, right_) / right2, b = dot(v, up_) / up2, c = dot(v, settings_.direction);
+        const unsigned outside = unsigned(a > kx * c) | unsigned(a < -kx * c) << 1 | unsigned(b > ky * c) << 2 |
+                                 unsigned(b < -ky * c) << 3;
+        outside_all &= outside;
+    }
+    return outside_all == 0;
+}
+
 Ray Camera::generate(double fx, double fy, double u1, double u2) const {
     const Vec3 d = normalize(right_ * (fx / width_ - 0.5) + up_ * (fy / height_ - 0.5) + settings_.direction);
     Vec3 eye = settings_.position;

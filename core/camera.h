@@ -3,6 +3,7 @@
 // out), and an optional thin lens for depth of field.
 #pragma once
 
+#include "bounds.h"
 #include "ray.h"
 
 namespace glint {
@@ -44,6 +45,9 @@ public:
     // shared by all the pixels times |cos|/distance². 0 where the camera cannot see p.
     double area_density(const Vec3& p, const Vec3& n) const;
     bool is_pinhole() const { return !(settings_.aperture > 0); }
+    // False only if no camera ray through the film, widened by `margin` pixels on every side,
+    // can meet the box: all its corners outside one side of the view pyramid. True with a lens.
+    bool may_see(const Bounds3& box, double margin) const;
     double near() const { return settings_.near; }
 
 private:

@@ -6,10 +6,27 @@
 
 namespace glint {
 
-DirectViewSplit::DirectViewSplit(const Scene& scene, int width, int height, int rays)
+namespace {
+
+bool may_see_direct_view(const Scene& scene, const Camera& camera, Filter filter) {
+    if (!is_black(scene.background())) return true;
+    const Geometry& geometry = scene.geometry();
+    for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim) {
+        const Material& m = scene.material(prim);
+        if (m.is_emissive() || m.type != MaterialType::diffuse) {
+            const Bounds3 box = geometry.is_sphere(prim) ? geometry.sphere(prim).bounds() : geometry.triangle(prim).bounds();
+            if (camera.may_see(box, filter_margin(filter))) return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+DirectViewSplit::DirectViewSplit(const Scene& scene, const Camera& camera, Filter filter, int width, int height,
+                                 int rays)
     : width_(width), height_(height), rays_(rays) {
-    if (rays > 0 && (!scene.lights().empty() || !is_black(scene.background())))
-        split_.assign(size_t(width) * height, 0);
+    if (rays > 0 && may_see_direct_view(scene, camera, filter)) split_.assign(size_t(width) * height, 0);
 }
 
 Rgb DirectViewSplit::probe(const PathTracer& tracer, const Camera& camera, double fx, double fy, uint64_t key) {

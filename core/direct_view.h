@@ -27,9 +27,10 @@ class DirectViewSplit {
 public:
     static constexpr int kProbesPerFootprint = 4;  // along each axis
 
-    // `rays` extra camera rays per sample where a pixel splits; none splits if rays is 0 or the
-    // scene has nothing to see directly (no emitter, a black background).
-    DirectViewSplit(const Scene& scene, int width, int height, int rays);
+    // `rays` extra camera rays per sample where a pixel splits. None splits (and nothing is
+    // probed) if rays is 0, or if the background is black and the camera can see no emitter,
+    // mirror or glass (by their bounding boxes against the view pyramid).
+    DirectViewSplit(const Scene& scene, const Camera& camera, Filter filter, int width, int height, int rays);
 
     // Whether decide() has anything to do.
     bool active() const { return !split_.empty(); }

@@ -27,7 +27,7 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
       tracer_(*scene_, camera_),
       film_(settings.width, settings.height),
       light_tracer_(*scene_, camera_, settings.filter, film_),
-      direct_view_(*scene_, settings.width, settings.height, scene_->integrator().direct_view_rays),
+      direct_view_(*scene_, camera_, settings.filter, settings.width, settings.height, scene_->integrator().direct_view_rays),
       tiles_x_((settings.width + kTileSize - 1) / kTileSize),
       tiles_y_((settings.height + kTileSize - 1) / kTileSize) {
     const uint32_t round = samples_per_round(settings_.filter);

@@ -34,7 +34,7 @@ std::vector<std::string> split_map(const nlohmann::json& json) {
     const LoadedScene loaded = scene_from(json.dump());
     const Camera camera(loaded.scene->camera(), kWidth, kHeight);
     const PathTracer tracer(*loaded.scene, camera);
-    DirectViewSplit split(*loaded.scene, kWidth, kHeight, 8);
+    DirectViewSplit split(*loaded.scene, camera, loaded.settings.filter, kWidth, kHeight, 8);
     split.decide(tracer, camera, loaded.settings.filter, 0, 0, kWidth, kHeight);
     std::vector<std::string> rows;
     for (int y = 0; y < kHeight; ++y) {
@@ -48,11 +48,32 @@ TEST(DirectView, SplitsThePixelsWhoseFootprintTheEdgeCrossesAndNoOthers) {
     // The tent filter's footprint reaches a quarter pixel beyond the pixel on either side, so
     // the edge between columns 7 and 8 lies in both their footprints.
     for (const std::string& row : split_map(half_lit(8))) EXPECT_EQ(row, ".......xx.......");
-    // Nothing to see directly: nothing splits, and nothing is probed.
-    auto dark = half_lit(8);
-    dark["objects"][0].erase("emission");
-    EXPECT_FALSE(DirectViewSplit(*scene_from(dark.dump()).scene, kWidth, kHeight, 8).active());
-    EXPECT_FALSE(DirectViewSplit(*scene_from(half_lit(8).dump()).scene, kWidth, kHeight, 0).active());
+}
+
+bool active(const nlohmann::json& json, int rays) {
+    const LoadedScene loaded = scene_from(json.dump());
+    const Camera camera(loaded.scene->camera(), kWidth, kHeight);
+    return DirectViewSplit(*loaded.scene, camera, loaded.settings.filter, kWidth, kHeight, rays).active();
+}
+
+TEST(DirectView, ProbesOnlyWhereTheCameraCanSeeSomethingToSplit) {
+    EXPECT_TRUE(active(half_lit(8), 8));
+    EXPECT_FALSE(active(half_lit(8), 0));
+    auto scene = half_lit(8);
+    scene["objects"][0].erase("emission");  // nothing to see directly
+    EXPECT_FALSE(active(scene, 8));
+    scene["film"]["background"] = 1;
+    EXPECT_TRUE(active(scene, 8));
+    scene["film"].erase("background");
+    // A mirror ball behind the camera; a glass ball above the view whose bottom reaches into
+    // the footprints of the top row (the view spans ±3.64 up and down at the quad's distance,
+    // 3.87 with the tent's quarter-pixel margin), then one whose box stays clear of them.
+    scene["objects"].push_back({{"type", "sphere"}, {"center", {0, 0, 20}}, {"radius", 1}, {"material", {{"type", "mirror"}}}});
+    EXPECT_FALSE(active(scene, 8));
+    scene["objects"].push_back({{"type", "sphere"}, {"center", {0, 4.8, 0}}, {"radius", 1}, {"material", {{"type", "glass"}}}});
+    EXPECT_TRUE(active(scene, 8));
+    scene["objects"].back()["center"] = {0, 5.6, 0};
+    EXPECT_FALSE(active(scene, 8));
 }
 
 TEST(DirectView, EdgePixelsConvergeToTheFilterWeightedCoverageWithLessVariance) {
