@@ -130,6 +130,33 @@ TEST(Bvh, Avx512PathAnswersBitForBitAsAvx2) {
     }
 }
 
+// The box test is conservative: a box rounded outward around a point of the double ray, a
+// float ulp or two wide (the tightest boxes there are, so the padding of the far distances
+// is all that keeps them: without it most of these fail), is never rejected, whatever the
+// ray's origin, direction (axis-parallel, signed zeros) and distance to the point.
+TEST(Bvh, BoxTestNeverRejectsATightBoxAroundAPointOfTheRay) {
+    Rng rng(20, 0, 0);
+    for (int i = 0; i < 20000; ++i) {
+        const double scale = std::pow(10.0, rng.uniform() * 8 - 3);
+        const Vec3 o = (Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 2 - Vec3{1}) * scale;
+        Vec3 d = sample_uniform_sphere(rng.uniform(), rng.uniform());
+        if (i % 4 == 1) d[i % 3] = i % 8 == 1 ? 0.0 : -0.0;
+        const Ray ray{o, d, i % 3 == 0 ? -kInfinity : 0.0, kInfinity};
+        WideBox box;
+        for (int slot = 0; slot < kBvhWidth; ++slot) {
+            const double t = std::pow(10.0, rng.uniform() * 8 - 4) * scale;
+            for (int a = 0; a < 3; ++a) {
+                // o + d·t in double is off the exact point by less than `error`.
+                const double p = o[a] + d[a] * t, error = (std::fabs(o[a]) + std::fabs(d[a] * t)) * 0x1p-51;
+                box.planes[2 * a][slot] = to_float_down(p - error);
+                box.planes[2 * a + 1][slot] = to_float_up(p + error);
+            }
+        }
+        __m256 entry;
+        EXPECT_EQ(RayBoxTest(ray).hit(box, _mm256_set1_ps(std::numeric_limits<float>::infinity()), entry), 0xFF) << "ray " << i;
+    }
+}
+
 // The four-wide directed roundings of a ray's setup agree bit for bit with the scalar ones,
 // which bracket the double: on signed zeros, subnormals, float's range limits, infinities, NaN
 // and random values of every magnitude.
