@@ -111,7 +111,8 @@ inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const 
 // AVX2 code (the traversal, the box and run tests) into the AVX-512 function and allocate it
 // there with 32 registers; nothing compiled for AVX-512 is emitted out of line where AVX2 code
 // could link to it. Rounding is the same: the same IEEE operations, and -ffp-contract=off keeps
-// AVX-512F's fused multiply-adds out.
+// AVX-512F's fused multiply-adds out. The leaf lambdas are always inlined: used by both copies,
+// GCC would otherwise call them out of line, leaf test and all, from both.
 bool Geometry::closest_triangle_avx2(Ray& ray, uint32_t self, Hit& hit) const { return closest_triangle(ray, self, hit); }
 bool Geometry::closest_triangle_avx512(Ray& ray, uint32_t self, Hit& hit) const { return closest_triangle(ray, self, hit); }
 bool Geometry::triangle_blocks_avx2(const Ray& ray, uint32_t self, uint32_t target) const {
