@@ -1,6 +1,21 @@
 #include "geometry.h"
 
+#include <stdexcept>
+
 namespace glint {
+
+Isa best_isa() {
+    static const Isa best = [] {
+        __builtin_cpu_init();  // may run before the constructor that would initialise the CPU model
+        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") ? Isa::avx512 : Isa::avx2;
+    }();
+    return best;
+}
+
+void Geometry::set_isa(Isa isa) {
+    if (isa == Isa::avx512 && best_isa() != Isa::avx512) throw std::invalid_argument("this processor has no AVX-512VL");
+    isa_ = isa;
+}
 
 Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles, Accelerator accelerator)
     : spheres_(std::move(spheres)), accelerator_(accelerator) {
@@ -74,11 +89,11 @@ unsigned lane_mask(uint32_t pos, uint32_t first, uint32_t count) {
 
 // A triangle is flat, so a ray leaving it cannot meet it again; a sphere is told, so that it
 // keeps only the far root (see Sphere::intersect).
-bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
+inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
     const uint32_t skip = position(self);
     const RayShear shear(ray);
     const RunTest run_test(shear);
-    auto test_run = [&](uint32_t first, uint32_t count, Ray& r) {
+    auto test_run = [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
         const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lane_mask(skip, first, count), r, hit.triangle);
         if (i < 0) return false;
         const uint32_t pos = first + static_cast<uint32_t>(i);
@@ -90,6 +105,21 @@ bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
     bool found = false;
     for (uint32_t pos = 0; pos < run_slot_.size(); ++pos) found |= test_run(pos, 1, ray);
     return found;
+}
+
+// The two instantiations of each triangle query. The target attribute lets GCC inline the
+// AVX2 code (the traversal, the box and run tests) into the AVX-512 function and allocate it
+// there with 32 registers; nothing compiled for AVX-512 is emitted out of line where AVX2 code
+// could link to it. Rounding is the same: the same IEEE operations, and -ffp-contract=off keeps
+// AVX-512F's fused multiply-adds out. The leaf lambdas are always inlined: used by both copies,
+// GCC would otherwise call them out of line, leaf test and all, from both.
+bool Geometry::closest_triangle_avx2(Ray& ray, uint32_t self, Hit& hit) const { return closest_triangle(ray, self, hit); }
+bool Geometry::closest_triangle_avx512(Ray& ray, uint32_t self, Hit& hit) const { return closest_triangle(ray, self, hit); }
+bool Geometry::triangle_blocks_avx2(const Ray& ray, uint32_t self, uint32_t target) const {
+    return triangle_blocks(ray, self, target);
+}
+bool Geometry::triangle_blocks_avx512(const Ray& ray, uint32_t self, uint32_t target) const {
+    return triangle_blocks(ray, self, target);
 }
 
 bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
@@ -120,15 +150,16 @@ bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
     Ray r = ray;
     // A mesh scene pays nothing for spheres, not even the call, and a sphere scene nothing for
     // triangles (not even the ray's shear).
-    const bool triangle_hit = !run_slot_.empty() && closest_triangle(r, self, hit);
+    const bool triangle_hit = !run_slot_.empty() && (isa_ == Isa::avx512 ? closest_triangle_avx512(r, self, hit)
+                                                                            : closest_triangle_avx2(r, self, hit));
     return (!spheres_.empty() && closest_sphere(r, self, hit)) || triangle_hit;
 }
 
-bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
+inline bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
     const uint32_t skip = position(self), wanted = position(target);
     const RayShear shear(ray);
     const RunTest run_test(shear);
-    auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) {
+    auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) __attribute__((always_inline)) {
         const unsigned left_out = lane_mask(skip, first, count) | lane_mask(wanted, first, count);
         return run_test.any(&triangle_runs_[9 * size_t(first)], count, left_out, r);
     };
@@ -153,7 +184,8 @@ bool Geometry::sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) con
 bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
     if (!is_finite(ray.o) || !is_finite(ray.d)) return false;
     return (!spheres_.empty() && sphere_blocks(ray, self, target)) ||
-           (!run_slot_.empty() && triangle_blocks(ray, self, target));
+           (!run_slot_.empty() && (isa_ == Isa::avx512 ? triangle_blocks_avx512(ray, self, target)
+                                                        : triangle_blocks_avx2(ray, self, target)));
 }
 
 SurfaceInteraction Geometry::interaction(const Ray& ray, const Hit& hit) const {

@@ -17,6 +17,14 @@ namespace glint {
 enum class Accelerator { automatic, bvh, list };
 inline constexpr uint32_t kListMaxPrimitives = 16;
 
+// The instruction set the triangle queries run in. Both paths compute 256-bit vectors and
+// answer bit for bit alike; AVX-512VL's EVEX encoding gives them 32 vector registers instead of
+// AVX2's 16, room for more of the box test's ray constants (GCC still leaves some on the stack;
+// bench/BENCHMARKS.md, fourth round).
+enum class Isa { avx2, avx512 };
+// The widest this processor and its operating system support, found once per process.
+Isa best_isa();
+
 struct Hit {
     double t = kInfinity;
     uint32_t prim = kNoPrimitive;
@@ -52,6 +60,9 @@ public:
     // Zero-area triangles (collinear or coincident vertices): kept in the numbering, never hit.
     size_t degenerate_triangles() const { return degenerate_; }
     Accelerator accelerator() const { return accelerator_; }
+    Isa isa() const { return isa_; }
+    // Runs the triangle queries in `isa` (tests compare the paths); it must not exceed best_isa().
+    void set_isa(Isa isa);
 
     // Closest hit in (ray.tmin, ray.tmax]; `self` is the primitive the ray leaves from.
     bool intersect(const Ray& ray, uint32_t self, Hit& hit) const;
@@ -71,9 +82,14 @@ private:
         return triangle_run::get(&triangle_runs_[run_start(pos)], run_size(pos), run_index(pos));
     }
     void store_runs(const std::vector<PackedTriangle>& packed, const std::vector<uint32_t>& triangle_at);
-    bool closest_triangle(Ray& ray, uint32_t self, Hit& hit) const;
+    // The triangle queries, written once and instantiated for each Isa below.
+    [[gnu::always_inline]] bool closest_triangle(Ray& ray, uint32_t self, Hit& hit) const;
+    bool closest_triangle_avx2(Ray& ray, uint32_t self, Hit& hit) const;
+    [[gnu::target("avx512f,avx512vl")]] bool closest_triangle_avx512(Ray& ray, uint32_t self, Hit& hit) const;
     bool closest_sphere(Ray& ray, uint32_t self, Hit& hit) const;
-    bool triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
+    [[gnu::always_inline]] bool triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
+    bool triangle_blocks_avx2(const Ray& ray, uint32_t self, uint32_t target) const;
+    [[gnu::target("avx512f,avx512vl")]] bool triangle_blocks_avx512(const Ray& ray, uint32_t self, uint32_t target) const;
     bool sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
 
     std::vector<Sphere> spheres_;
@@ -85,6 +101,7 @@ private:
     std::vector<uint32_t> triangle_at_;        // tree position -> triangle index (empty: identity)
     std::vector<uint32_t> position_of_;        // triangle index -> tree position (empty: identity)
     Accelerator accelerator_ = Accelerator::bvh;  // never automatic once built
+    Isa isa_ = best_isa();
     Bvh sphere_bvh_, triangle_bvh_;
     size_t degenerate_ = 0;
 };

@@ -90,6 +90,73 @@ TEST(Bvh, AxisParallelRaysWithSignedZerosOnNodePlanes) {
     EXPECT_EQ(hit.t, 1);
 }
 
+// The AVX-512 instantiation of the triangle queries answers bit for bit as the AVX2 one (same
+// triangle, t and barycentrics; same any-hit answers), through the tree and through the list, on
+// random rays and on axis-parallel rays with signed zeros aimed at the shared edges and vertices
+// of a grid. Elsewhere the tests run whichever path best_isa() picks; this one also runs AVX2.
+TEST(Bvh, Avx512PathAnswersBitForBitAsAvx2) {
+    if (best_isa() != Isa::avx512) GTEST_SKIP() << "this processor has no AVX-512VL";
+    Scene s = random_scene(18, 0, 3000);
+    for (const Triangle& t : grid(16)) s.triangles.push_back(t);
+    auto bits = [](double x) { return std::bit_cast<uint64_t>(x); };
+    for (Accelerator accelerator : {Accelerator::bvh, Accelerator::list}) {
+        Geometry avx2({}, s.triangles, accelerator), avx512({}, s.triangles, accelerator);
+        avx2.set_isa(Isa::avx2);
+        avx512.set_isa(Isa::avx512);
+        auto expect_same = [&](const Ray& ray) {
+            Hit a, b;
+            ASSERT_EQ(avx2.intersect(ray, kNoPrimitive, a), avx512.intersect(ray, kNoPrimitive, b));
+            EXPECT_EQ(a.prim, b.prim);
+            for (auto [x, y] : {std::pair{a.t, b.t}, {a.triangle.b0, b.triangle.b0}, {a.triangle.b1, b.triangle.b1},
+                                {a.triangle.b2, b.triangle.b2}})
+                EXPECT_EQ(bits(x), bits(y));
+            EXPECT_EQ(avx2.occluded(ray, kNoPrimitive), avx512.occluded(ray, kNoPrimitive));
+        };
+        Rng rng(19, 0, 0);
+        int hits = 0;
+        for (int i = 0; i < 5000; ++i) {
+            const Vec3 o = Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 30 - Vec3{15};
+            const Ray ray{o, sample_uniform_sphere(rng.uniform(), rng.uniform())};
+            expect_same(ray);
+            const Vec3 vertex{std::floor(rng.uniform() * 17), std::floor(rng.uniform() * 17), 0};
+            for (double zero : {0.0, -0.0}) {
+                expect_same(Ray{vertex + Vec3{0, 0, 2}, {zero, zero, -1}});
+                expect_same(Ray{vertex + Vec3{0.5, 0, 3}, normalize(Vec3{zero, 0.25, -1})});  // onto an edge
+            }
+            Hit unused;
+            hits += avx2.intersect(ray, kNoPrimitive, unused);
+        }
+        EXPECT_GT(hits, 500);
+    }
+}
+
+// The box test is conservative: a box rounded outward around a point of the double ray, a
+// float ulp or two wide (the tightest boxes there are, so the padding of the far distances
+// is all that keeps them: without it most of these fail), is never rejected, whatever the
+// ray's origin, direction (axis-parallel, signed zeros) and distance to the point.
+TEST(Bvh, BoxTestNeverRejectsATightBoxAroundAPointOfTheRay) {
+    Rng rng(20, 0, 0);
+    for (int i = 0; i < 20000; ++i) {
+        const double scale = std::pow(10.0, rng.uniform() * 8 - 3);
+        const Vec3 o = (Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 2 - Vec3{1}) * scale;
+        Vec3 d = sample_uniform_sphere(rng.uniform(), rng.uniform());
+        if (i % 4 == 1) d[i % 3] = i % 8 == 1 ? 0.0 : -0.0;
+        const Ray ray{o, d, i % 3 == 0 ? -kInfinity : 0.0, kInfinity};
+        WideBox box;
+        for (int slot = 0; slot < kBvhWidth; ++slot) {
+            const double t = std::pow(10.0, rng.uniform() * 8 - 4) * scale;
+            for (int a = 0; a < 3; ++a) {
+                // o + d·t in double is off the exact point by less than `error`.
+                const double p = o[a] + d[a] * t, error = (std::fabs(o[a]) + std::fabs(d[a] * t)) * 0x1p-51;
+                box.planes[2 * a][slot] = to_float_down(p - error);
+                box.planes[2 * a + 1][slot] = to_float_up(p + error);
+            }
+        }
+        __m256 entry;
+        EXPECT_EQ(RayBoxTest(ray).hit(box, _mm256_set1_ps(std::numeric_limits<float>::infinity()), entry), 0xFF) << "ray " << i;
+    }
+}
+
 // The four-wide directed roundings of a ray's setup agree bit for bit with the scalar ones,
 // which bracket the double: on signed zeros, subnormals, float's range limits, infinities, NaN
 // and random values of every magnitude.
