@@ -36,10 +36,19 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
         throw std::invalid_argument("the first sample must be a multiple of " + std::to_string(round));
 }
 
-void RenderJob::film_position(int x, int y, uint32_t index, double u1, double u2, double& fx, double& fy) const {
+Ray RenderJob::camera_ray(int x, int y, uint32_t index, uint32_t point, uint64_t key, Rng& rng) const {
+    double u1, u2;
+    if (settings_.sampler == Sampler::sobol) {
+        sobol_2d(point, key, u1, u2);
+    } else {
+        u1 = rng.uniform();
+        u2 = rng.uniform();
+    }
     const uint32_t sub = index % 4;  // smallpt's subpixel (sx, sy) = (sub mod 2, sub / 2)
-    fx = x + filter_offset(settings_.filter, sub & 1, u1);
-    fy = settings_.height - 1 - y + filter_offset(settings_.filter, sub >> 1, u2);
+    const double fx = x + filter_offset(settings_.filter, sub & 1, u1);
+    const double fy = settings_.height - 1 - y + filter_offset(settings_.filter, sub >> 1, u2);
+    const double lens1 = rng.uniform(), lens2 = rng.uniform();
+    return camera_.generate(fx, fy, lens1, lens2);
 }
 
 Rgb RenderJob::sample(int x, int y, uint32_t index) const {
@@ -54,26 +63,18 @@ Rgb RenderJob::sample(int x, int y, uint32_t index) const {
     const bool sobol = settings_.sampler == Sampler::sobol;
     const uint32_t round = samples_per_round(settings_.filter);
     const uint64_t key = mix64(mix64(settings_.seed ^ 0xF11Du) ^ pixel);
-    double u1, u2;
     FirstVertexSamples first;
     if (sobol) {
-        sobol_2d(index / round, key ^ (index % round), u1, u2);
         sobol_2d(index, mix64(key ^ 0x11647u), first.light[0], first.light[1]);
         sobol_2d(index, mix64(key ^ 0xB0u), first.bounce[0], first.bounce[1]);
-    } else {
-        u1 = rng.uniform();
-        u2 = rng.uniform();
     }
-    double fx, fy;
-    film_position(x, y, index, u1, u2, fx, fy);
-    const double lens1 = rng.uniform(), lens2 = rng.uniform();
+    const Ray ray = camera_ray(x, y, index, index / round, key ^ (index % round), rng);
     // One light path per camera sample, on its own stream keyed like the sample's; initialised
     // from trace()'s result in place, where assigning it copied its four vertices (~560 bytes).
     const LightPath light = scene_->light_tracing() ? [&] {
         Rng light_rng(settings_.seed, pixel, uint64_t(index) | (uint64_t(1) << 63));
         return light_tracer_.trace(light_rng);
     }() : LightPath{};
-    const Ray ray = camera_.generate(fx, fy, lens1, lens2);
     if (!direct_view_.splits(x, y)) return tracer_.radiance(ray, rng, light, sobol ? &first : nullptr);
     return tracer_.radiance(ray, rng, light, sobol ? &first : nullptr, DirectView::left_out) +
            direct_view(x, y, index, key, rng);
@@ -86,17 +87,8 @@ Rgb RenderJob::direct_view(int x, int y, uint32_t index, uint64_t key, Rng& rng)
     const uint64_t subpixel_key = mix64(key ^ 0xD1EC7u) ^ (index % round);
     Rgb sum{0};
     for (uint32_t k = 0; k < rays; ++k) {
-        double u1, u2;
-        if (settings_.sampler == Sampler::sobol) {
-            sobol_2d(index / round * rays + k, subpixel_key, u1, u2);
-        } else {
-            u1 = rng.uniform();
-            u2 = rng.uniform();
-        }
-        double fx, fy;
-        film_position(x, y, index, u1, u2, fx, fy);
-        const double lens1 = rng.uniform(), lens2 = rng.uniform();
-        sum += tracer_.radiance(camera_.generate(fx, fy, lens1, lens2), rng, kNoLightPath, nullptr, DirectView::alone);
+        const Ray ray = camera_ray(x, y, index, index / round * rays + k, subpixel_key, rng);
+        sum += tracer_.radiance(ray, rng, kNoLightPath, nullptr, DirectView::alone);
     }
     return sum / double(rays);
 }

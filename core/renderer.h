@@ -80,8 +80,10 @@ private:
     Rgb sample(int x, int y, uint32_t index) const;
     // The direct view of pixel (x, y) for sample `index` from direct_view_.rays() camera rays.
     Rgb direct_view(int x, int y, uint32_t index, uint64_t key, Rng& rng) const;
-    // The film position of sample `index` of pixel (x, y) from (u1, u2).
-    void film_position(int x, int y, uint32_t index, double u1, double u2, double& fx, double& fy) const;
+    // A camera ray for sample `index` of pixel (x, y), through the film position that point
+    // `point` of the scrambled Sobol' sequence `key` picks in its subpixel (with the
+    // independent sampler, two numbers from rng do), and a lens point from rng.
+    Ray camera_ray(int x, int y, uint32_t index, uint32_t point, uint64_t key, Rng& rng) const;
     bool render_tile(size_t tile, uint32_t first, uint32_t last);
     bool should_stop() const;
     uint32_t next_pass_size(uint32_t previous) const;
