@@ -25,7 +25,7 @@ bool may_see_direct_view(const Scene& scene, const Camera& camera, Filter filter
 
 DirectViewSplit::DirectViewSplit(const Scene& scene, const Camera& camera, Filter filter, int width, int height,
                                  int rays)
-    : width_(width), height_(height), rays_(rays) {
+    : filter_(filter), width_(width), height_(height), rays_(rays) {
     if (rays > 0 && may_see_direct_view(scene, camera, filter)) split_.assign(size_t(width) * height, 0);
 }
 
@@ -35,13 +35,12 @@ Rgb DirectViewSplit::probe(const PathTracer& tracer, const Camera& camera, doubl
     return tracer.radiance(camera.generate(fx, fy, lens1, lens2), rng, kNoLightPath, nullptr, DirectView::alone);
 }
 
-void DirectViewSplit::decide(const PathTracer& tracer, const Camera& camera, Filter filter, int x0, int y0, int x1,
-                             int y1) {
+void DirectViewSplit::decide(const PathTracer& tracer, const Camera& camera, int x0, int y0, int x1, int y1) {
     if (!active()) return;
     // The footprint [-margin, 1 + margin] of a pixel holds probes 0..3 of the pixel, spaced so
     // that the next pixel's start `per_pixel` probes further on: 2 per pixel for the tent's 1.5
     // pixels, 3 for the box's 1.
-    const double margin = filter_margin(filter), spacing = (1 + 2 * margin) / (kProbesPerFootprint - 1);
+    const double margin = filter_margin(filter_), spacing = (1 + 2 * margin) / (kProbesPerFootprint - 1);
     const int per_pixel = int(std::lround(1 / spacing));
     const int columns = (x1 - x0 - 1) * per_pixel + kProbesPerFootprint, rows = (y1 - y0 - 1) * per_pixel + kProbesPerFootprint;
     const uint64_t grid_width = uint64_t(width_ - 1) * per_pixel + kProbesPerFootprint;
@@ -59,8 +58,7 @@ void DirectViewSplit::decide(const PathTracer& tracer, const Camera& camera, Fil
             bool varies = false;
             for (int j = 0; j < kProbesPerFootprint; ++j)
                 for (int i = 0; i < kProbesPerFootprint; ++i) {
-                    const Rgb& v = corner[size_t(j) * columns + i];
-                    varies = varies || v.x != corner->x || v.y != corner->y || v.z != corner->z;
+                    varies = varies || corner[size_t(j) * columns + i] != *corner;
                 }
             split_[size_t(y) * width_ + x] = varies;
         }

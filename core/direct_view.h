@@ -37,13 +37,14 @@ public:
     int rays() const { return rays_; }
     // Decides for the pixels in [x0, x1) × [y0, y1) (rows from the top); disjoint regions may be
     // decided concurrently.
-    void decide(const PathTracer& tracer, const Camera& camera, Filter filter, int x0, int y0, int x1, int y1);
+    void decide(const PathTracer& tracer, const Camera& camera, int x0, int y0, int x1, int y1);
     bool splits(int x, int y) const { return active() && split_[size_t(y) * width_ + x] != 0; }
 
 private:
     // The direct view seen at film position (fx, fy); `key` names the probe.
     static Rgb probe(const PathTracer& tracer, const Camera& camera, double fx, double fy, uint64_t key);
 
+    Filter filter_;
     int width_, height_, rays_;
     std::vector<uint8_t> split_;  // per pixel; empty when inactive
 };

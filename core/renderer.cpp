@@ -115,7 +115,7 @@ bool RenderJob::render_pass(ThreadPool& pool, uint32_t first, uint32_t last) {
     if (direct_view_.active() && !direct_view_decided_) {
         pool.parallel_for(size_t(tiles_x_) * tiles_y_, [&](size_t tile) {
             const int x0 = int(tile % tiles_x_) * kTileSize, y0 = int(tile / tiles_x_) * kTileSize;
-            direct_view_.decide(tracer_, camera_, settings_.filter, x0, y0, std::min(x0 + kTileSize, settings_.width),
+            direct_view_.decide(tracer_, camera_, x0, y0, std::min(x0 + kTileSize, settings_.width),
                                 std::min(y0 + kTileSize, settings_.height));
         });
         direct_view_decided_ = true;

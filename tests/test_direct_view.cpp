@@ -35,7 +35,7 @@ std::vector<std::string> split_map(const nlohmann::json& json) {
     const Camera camera(loaded.scene->camera(), kWidth, kHeight);
     const PathTracer tracer(*loaded.scene, camera);
     DirectViewSplit split(*loaded.scene, camera, loaded.settings.filter, kWidth, kHeight, 8);
-    split.decide(tracer, camera, loaded.settings.filter, 0, 0, kWidth, kHeight);
+    split.decide(tracer, camera, 0, 0, kWidth, kHeight);
     std::vector<std::string> rows;
     for (int y = 0; y < kHeight; ++y) {
         rows.emplace_back();
