@@ -6,6 +6,7 @@
 // primitive tests are template parameters, so the hot loop makes no virtual or indirect calls.
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <span>
@@ -134,7 +135,7 @@ public:
         const RayBoxTest box(ray);
         const BvhNode* const nodes = nodes_.data();
         const __m256 tmax = _mm256_set1_ps(to_float_up(ray.tmax));
-        uint32_t stack[kStackSize];
+        uint32_t stack[kStackSize + 1];  // + 1: push_others stores eight words to push at most seven
         stack[0] = kStackEnd;
         uint32_t* top = stack + 1;
         uint32_t ref = ChildRef::node(0);
@@ -145,7 +146,7 @@ public:
                 unsigned mask = box.hit(node.boxes, tmax, entries);
                 if (mask != 0) {
                     ref = node.child[first_slot(mask)];
-                    for (; mask != 0; mask &= mask - 1) *top++ = node.child[__builtin_ctz(mask)];
+                    top = push_others(node, mask, top);
                     continue;
                 }
             } else {
@@ -164,6 +165,15 @@ private:
     // ray against 7.7 pops), but that no real leaf can be, as its first position is out of range.
     static constexpr uint32_t kStackEnd = ~0u;
     static_assert(ChildRef::first(kStackEnd) >= ChildRef::kMaxPrimitives && ChildRef::count(kStackEnd) != 0);
+
+    // For each mask of child slots, its slots in ascending order, one byte each.
+    static constexpr std::array<uint64_t, 1u << kBvhWidth> kSlotsOf = [] {
+        std::array<uint64_t, 1u << kBvhWidth> slots{};
+        for (unsigned mask = 0; mask < slots.size(); ++mask)
+            for (unsigned slot = 0, n = 0; slot < kBvhWidth; ++slot)
+                if (mask >> slot & 1) slots[mask] |= uint64_t{slot} << 8 * n++;
+        return slots;
+    }();
 
     static const BvhNode& at(const BvhNode* nodes, uint32_t ref) {
         return *reinterpret_cast<const BvhNode*>(reinterpret_cast<const char*>(nodes) + size_t{ref} * 4);
@@ -194,6 +204,15 @@ private:
     static uint64_t cull_key(float tmax) {
         const uint32_t bits = tmax < 0 ? ~0u : std::bit_cast<uint32_t>(tmax);  // a negative limit culls nothing
         return uint64_t{bits} << 32 | 0xFFFFFFFFu;
+    }
+
+    // Pushes the children in `mask` (possibly none) in slot order, the highest on top, with no
+    // branch on their number: VPERMD gathers them to the front of one eight-word store.
+    static uint32_t* push_others(const BvhNode& node, unsigned mask, uint32_t* top) {
+        const __m256i slots = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&kSlotsOf[mask])));
+        const __m256i children = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(top), _mm256_permutevar8x32_epi32(children, slots));
+        return top + std::popcount(mask);
     }
 
     // Two keys put in order by selects rather than a branch: which child is nearer is a coin toss.
