@@ -201,13 +201,12 @@ public:
         _mm256_store_pd(u, l.u);
         _mm256_store_pd(v, l.v);
         _mm256_store_pd(w, l.w);
-        int best = -1;
-        for (double nearest = ray.tmax; valid != 0; valid &= valid - 1) {
-            const int i = __builtin_ctz(valid);
-            if (t[i] <= nearest) {
-                nearest = t[i];
-                best = i;
-            }
+        // Usually one lane is hit; of several, in_range() left only t <= ray.tmax, so the scalar
+        // tests in turn would keep the last of the nearest.
+        int best = __builtin_ctz(valid);
+        for (unsigned rest = valid & (valid - 1); rest != 0; rest &= rest - 1) {
+            const int i = __builtin_ctz(rest);
+            if (t[i] <= t[best]) best = i;
         }
         hit = {t[best], u[best] * inv_det[best], v[best] * inv_det[best], w[best] * inv_det[best]};
         return best;
