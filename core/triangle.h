@@ -239,7 +239,9 @@ private:
         l.u = _mm256_sub_pd(_mm256_mul_pd(c[0], b[1]), _mm256_mul_pd(c[1], b[0]));
         l.v = _mm256_sub_pd(_mm256_mul_pd(a[0], c[1]), _mm256_mul_pd(a[1], c[0]));
         l.w = _mm256_sub_pd(_mm256_mul_pd(b[0], a[1]), _mm256_mul_pd(b[1], a[0]));
-        const unsigned used = ((1u << n) - 1) & ~skip;
+        // The run's lanes by table: a shift by n would need n moved to cl first.
+        static constexpr unsigned kRunLanes[triangle_run::kMaxSize + 1] = {0b0, 0b1, 0b11, 0b111, 0b1111};
+        const unsigned used = kRunLanes[n] & ~skip;
         // One sign from the sign bits: u's differs from v's or w's where (u ^ v) | (u ^ w) has its
         // sign bit set. This holds for the lanes without zeros, and a zero sends the run to the
         // scalar test. A NaN lane's sign bit is arbitrary, but its t is NaN and fails in_range()
