@@ -97,21 +97,17 @@ inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const 
     const uint32_t skip = position(self);
     const RayShear shear(ray);
     const RunTest run_test(shear);
-    // `input_index(pos)`: which input triangle position `pos` holds. A BVH stores them in its
-    // build order, a list as given; chosen once here, not asked at every hit.
-    auto test_run = [&](uint32_t first, uint32_t count, Ray& r, auto input_index) __attribute__((always_inline)) {
+    auto test_run = [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
         const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lane_mask(skip, first), r, hit.triangle);
         if (i < 0) return false;
+        const uint32_t pos = first + static_cast<uint32_t>(i);
         hit.t = r.tmax = hit.triangle.t;
-        hit.prim = triangle_id(input_index(first + static_cast<uint32_t>(i)));
+        hit.prim = triangle_id(triangle_at_.empty() ? pos : triangle_at_[pos]);
         return true;
     };
-    if (accelerator_ == Accelerator::bvh)
-        return triangle_bvh_.closest(ray, [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
-            return test_run(first, count, r, [this](uint32_t pos) { return triangle_at_[pos]; });
-        });
+    if (accelerator_ == Accelerator::bvh) return triangle_bvh_.closest(ray, test_run);
     bool found = false;
-    for (uint32_t pos = 0; pos < run_slot_.size(); ++pos) found |= test_run(pos, 1, ray, [](uint32_t p) { return p; });
+    for (uint32_t pos = 0; pos < run_slot_.size(); ++pos) found |= test_run(pos, 1, ray);
     return found;
 }
 
