@@ -195,19 +195,16 @@ public:
         const Lanes l = lanes(run, n, skip);
         if (l.on_edge != 0) return scalar_closest(run, n, l.inside | l.on_edge, ray, hit);
         if (l.inside == 0) return -1;
-        const InRange r = in_range(l, ray);
-        if (r.lanes == 0) return -1;
-        // Only a hit stores the lanes, for the scalar choice and products below.
         alignas(32) double t[4], u[4], v[4], w[4], inv_det[4];
-        _mm256_store_pd(t, r.t);
-        _mm256_store_pd(inv_det, r.inv_det);
+        unsigned valid = in_range(l, ray, t, inv_det);
+        if (valid == 0) return -1;
         _mm256_store_pd(u, l.u);
         _mm256_store_pd(v, l.v);
         _mm256_store_pd(w, l.w);
         // Usually one lane is hit; of several, in_range() left only t <= ray.tmax, so the scalar
         // tests in turn would keep the last of the nearest.
-        int best = __builtin_ctz(r.lanes);
-        for (unsigned rest = r.lanes & (r.lanes - 1); rest != 0; rest &= rest - 1) {
+        int best = __builtin_ctz(valid);
+        for (unsigned rest = valid & (valid - 1); rest != 0; rest &= rest - 1) {
             const int i = __builtin_ctz(rest);
             if (t[i] <= t[best]) best = i;
         }
@@ -220,7 +217,9 @@ public:
         const Lanes l = lanes(run, n, skip);
         TriangleHit unused;
         if (l.on_edge != 0) return scalar_closest(run, n, l.inside | l.on_edge, ray, unused) >= 0;
-        return l.inside != 0 && in_range(l, ray).lanes != 0;
+        if (l.inside == 0) return false;
+        alignas(32) double t[4], inv_det[4];
+        return in_range(l, ray, t, inv_det) != 0;
     }
 
 private:
@@ -261,12 +260,9 @@ private:
         return static_cast<unsigned>(_mm256_movemask_pd(any));
     }
 
-    struct InRange {
-        __m256d t, inv_det;  // every lane's
-        unsigned lanes;      // those of `l.inside` whose t lies in (ray.tmin, ray.tmax]
-    };
-
-    InRange in_range(const Lanes& l, const Ray& ray) const {
+    // The lanes of `l.inside` whose t lies in (ray.tmin, ray.tmax], with every lane's t and
+    // 1/det stored.
+    unsigned in_range(const Lanes& l, const Ray& ray, double* t, double* inv_det) const {
         const __m256d det = _mm256_add_pd(_mm256_add_pd(l.u, l.v), l.w);
         const __m256d tz = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(l.u, _mm256_mul_pd(sz_, l.az)),
                                                        _mm256_mul_pd(l.v, _mm256_mul_pd(sz_, l.bz))),
@@ -275,7 +271,9 @@ private:
         const __m256d tv = _mm256_mul_pd(tz, inv);
         const __m256d ok = _mm256_and_pd(_mm256_cmp_pd(tv, _mm256_set1_pd(ray.tmin), _CMP_GT_OQ),
                                          _mm256_cmp_pd(tv, _mm256_set1_pd(ray.tmax), _CMP_LE_OQ));
-        return {tv, inv, static_cast<unsigned>(_mm256_movemask_pd(ok)) & l.inside};
+        _mm256_store_pd(t, tv);
+        _mm256_store_pd(inv_det, inv);
+        return static_cast<unsigned>(_mm256_movemask_pd(ok)) & l.inside;
     }
 
     // The scalar tests of the lanes in `lanes`, in order.
