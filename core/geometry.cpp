@@ -1,5 +1,6 @@
 #include "geometry.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace glint {
@@ -79,10 +80,13 @@ namespace {
 
 static_assert(BinaryTree::kMaxLeafSize <= triangle_run::kMaxSize, "a leaf must fit one run test");
 
-// The lane of position `pos` in the run of `count` triangles starting at `first`, as a mask (0
-// when `pos` lies outside the run, kNoPrimitive included).
-unsigned lane_mask(uint32_t pos, uint32_t first, uint32_t count) {
-    return pos - first < count ? 1u << (pos - first) : 0u;
+// The lane of position `pos` in the run starting at `first`, as a mask: 0 from four lanes on
+// (kNoPrimitive and positions before `first` included), by table rather than by a test and a
+// shift. A lane past the end of a shorter run names no triangle of it, and the run test looks
+// only at the run's own lanes.
+unsigned lane_mask(uint32_t pos, uint32_t first) {
+    static constexpr unsigned kLane[triangle_run::kMaxSize + 1] = {0b1, 0b10, 0b100, 0b1000, 0};
+    return kLane[std::min(pos - first, triangle_run::kMaxSize)];
 }
 
 }  // namespace
@@ -94,7 +98,7 @@ inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const 
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto test_run = [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
-        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lane_mask(skip, first, count), r, hit.triangle);
+        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lane_mask(skip, first), r, hit.triangle);
         if (i < 0) return false;
         const uint32_t pos = first + static_cast<uint32_t>(i);
         hit.t = r.tmax = hit.triangle.t;
@@ -160,7 +164,7 @@ inline bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t ta
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) __attribute__((always_inline)) {
-        const unsigned left_out = lane_mask(skip, first, count) | lane_mask(wanted, first, count);
+        const unsigned left_out = lane_mask(skip, first) | lane_mask(wanted, first);
         return run_test.any(&triangle_runs_[9 * size_t(first)], count, left_out, r);
     };
     if (accelerator_ == Accelerator::bvh) return triangle_bvh_.any(ray, blocks);

@@ -201,13 +201,12 @@ public:
         _mm256_store_pd(u, l.u);
         _mm256_store_pd(v, l.v);
         _mm256_store_pd(w, l.w);
-        int best = -1;
-        for (double nearest = ray.tmax; valid != 0; valid &= valid - 1) {
-            const int i = __builtin_ctz(valid);
-            if (t[i] <= nearest) {
-                nearest = t[i];
-                best = i;
-            }
+        // Usually one lane is hit; of several, in_range() left only t <= ray.tmax, so the scalar
+        // tests in turn would keep the last of the nearest.
+        int best = __builtin_ctz(valid);
+        for (unsigned rest = valid & (valid - 1); rest != 0; rest &= rest - 1) {
+            const int i = __builtin_ctz(rest);
+            if (t[i] <= t[best]) best = i;
         }
         hit = {t[best], u[best] * inv_det[best], v[best] * inv_det[best], w[best] * inv_det[best]};
         return best;
@@ -226,7 +225,7 @@ public:
 private:
     struct Lanes {
         __m256d u, v, w, az, bz, cz;  // edge functions; vertices' distances along the ray's axis
-        unsigned inside;   // all three edge functions nonzero and of one sign
+        unsigned inside;   // all three edge functions of one sign (by sign bits: -0 negative, +0 positive)
         unsigned on_edge;  // some edge function exactly zero
     };
 
@@ -240,13 +239,16 @@ private:
         l.u = _mm256_sub_pd(_mm256_mul_pd(c[0], b[1]), _mm256_mul_pd(c[1], b[0]));
         l.v = _mm256_sub_pd(_mm256_mul_pd(a[0], c[1]), _mm256_mul_pd(a[1], c[0]));
         l.w = _mm256_sub_pd(_mm256_mul_pd(b[0], a[1]), _mm256_mul_pd(b[1], a[0]));
-        const unsigned used = ((1u << n) - 1) & ~skip;
-        // Signs from the sign bits: all three set, or none, once the zeros are out. A NaN lane's
-        // sign bit is arbitrary, but its t is NaN and fails in_range() either way.
-        const auto all_negative = static_cast<unsigned>(_mm256_movemask_pd(_mm256_and_pd(_mm256_and_pd(l.u, l.v), l.w)));
-        const auto any_negative = static_cast<unsigned>(_mm256_movemask_pd(_mm256_or_pd(_mm256_or_pd(l.u, l.v), l.w)));
+        // The run's lanes by table: a shift by n would need n moved to cl first.
+        static constexpr unsigned kRunLanes[triangle_run::kMaxSize + 1] = {0b0, 0b1, 0b11, 0b111, 0b1111};
+        const unsigned used = kRunLanes[n] & ~skip;
+        // One sign from the sign bits: u's differs from v's or w's where (u ^ v) | (u ^ w) has its
+        // sign bit set. This holds for the lanes without zeros, and a zero sends the run to the
+        // scalar test. A NaN lane's sign bit is arbitrary, but its t is NaN and fails in_range()
+        // either way.
+        const __m256d sign_differs = _mm256_or_pd(_mm256_xor_pd(l.u, l.v), _mm256_xor_pd(l.u, l.w));
         l.on_edge = any_compares<_CMP_EQ_OQ>(l) & used;
-        l.inside = (all_negative | ~any_negative) & used & ~l.on_edge;
+        l.inside = ~static_cast<unsigned>(_mm256_movemask_pd(sign_differs)) & used;
         return l;
     }
 
