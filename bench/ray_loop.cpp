@@ -1,0 +1,139 @@
+// One ray set through one engine in a plain loop on the calling thread, timed by the thread's CPU
+// time: the step-by-step measurements of the BVH work (bench/BENCHMARKS.md) alternate two builds
+// of this on the same set, and callgrind counts just the loop (`--toggle-collect='*trace_pass*'`).
+//   ray_loop SHARED_DIR MESH KIND ENGINE QUERY PASSES [LIMIT [DUMP]]
+// MESH: a mesh of SHARED_DIR/scenes/meshes; KIND: primary | diffuse; ENGINE: glint | medium | high
+// (Embree's build qualities); QUERY: closest | any. Prints the fastest pass. LIMIT traces only the
+// first rays (0: all): a few thousand rays traced many times stay in the cache. DUMP writes each
+// answer (closest: t, primitive and glint's barycentrics as doubles; any: 0 or 1), to compare two
+// builds bit for bit with cmp.
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdlib>
+#include <cstdio>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "geometry.h"
+#include "obj_loader.h"
+#include "ray_file.h"
+
+using namespace glint;
+
+namespace {
+
+double thread_seconds() {
+    timespec t{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// Not inlined, so that callgrind can collect exactly the traced loop.
+template <typename F>
+[[gnu::noinline]] void trace_pass(F&& f) {
+    f();
+}
+
+using Answer = std::array<double, 5>;
+
+// Runs `trace(i, answer)` over the rays PASSES times; returns the fastest pass in seconds.
+template <typename Trace>
+double fastest_pass(size_t n, int passes, std::vector<Answer>& answers, Trace&& trace) {
+    double best = 1e300;
+    for (int p = 0; p < passes; ++p) {
+        const double start = thread_seconds();
+        trace_pass([&] {
+            for (size_t i = 0; i < n; ++i) trace(i, answers[i]);
+        });
+        best = std::min(best, thread_seconds() - start);
+    }
+    return best;
+}
+
+double run_glint(const ObjMesh& mesh, const std::vector<RayRecord>& rays, bool closest, int passes,
+                 std::vector<Answer>& answers) {
+    const Geometry geometry({}, to_triangles(mesh), Accelerator::bvh);
+    return fastest_pass(rays.size(), passes, answers, [&](size_t i, Answer& a) {
+        const RayRecord& r = rays[i];
+        const Ray ray{{r.o[0], r.o[1], r.o[2]}, {r.d[0], r.d[1], r.d[2]}, r.tmin, r.tmax};
+        if (!closest) {
+            a[0] = geometry.occluded(ray, kNoPrimitive);
+            return;
+        }
+        Hit hit;
+        const bool found = geometry.intersect(ray, kNoPrimitive, hit);
+        a = {found ? hit.t : -1.0, found ? double(hit.prim) : -1.0, hit.triangle.b0, hit.triangle.b1, hit.triangle.b2};
+    });
+}
+
+double run_embree(const ObjMesh& mesh, const std::vector<RayRecord>& rays, RTCBuildQuality quality, bool closest,
+                  int passes, std::vector<Answer>& answers) {
+    RTCDevice device = rtcNewDevice("threads=1");
+    RTCScene scene = rtcNewScene(device);
+    rtcSetSceneBuildQuality(scene, quality);
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* v = static_cast<float*>(
+        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
+    for (size_t i = 0; i < mesh.vertices.size(); ++i)
+        for (int a = 0; a < 3; ++a) v[3 * i + a] = float(mesh.vertices[i][a]);
+    auto* index = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                 3 * sizeof(unsigned), mesh.triangles.size()));
+    for (size_t i = 0; i < mesh.triangles.size(); ++i)
+        for (int a = 0; a < 3; ++a) index[3 * i + a] = mesh.triangles[i][a];
+    rtcSetGeometryBuildQuality(g, quality);
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(scene, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(scene);
+    const double best = fastest_pass(rays.size(), passes, answers, [&](size_t i, Answer& a) {
+        const RayRecord& r = rays[i];
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        const RTCRay ray{r.o[0], r.o[1], r.o[2], r.tmin, r.d[0], r.d[1], r.d[2], 0.0f, r.tmax, ~0u, 0, 0};
+        if (!closest) {
+            RTCRay shadow = ray;
+            rtcOccluded1(scene, &context, &shadow);
+            a[0] = shadow.tfar < 0;
+            return;
+        }
+        RTCRayHit rh{};
+        rh.ray = ray;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(scene, &context, &rh);
+        const bool found = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+        a = {found ? rh.ray.tfar : -1.0, found ? double(rh.hit.primID) : -1.0, 0, 0, 0};
+    });
+    rtcReleaseScene(scene);
+    rtcReleaseDevice(device);
+    return best;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 7) {
+        std::fprintf(stderr, "usage: ray_loop SHARED_DIR MESH KIND glint|medium|high closest|any PASSES [LIMIT [DUMP]]\n");
+        return 2;
+    }
+    const std::string shared = argv[1], mesh_name = argv[2], kind = argv[3], engine = argv[4], query = argv[5];
+    const int passes = std::max(1, std::atoi(argv[6]));
+    const size_t limit = argc > 7 ? std::strtoull(argv[7], nullptr, 10) : 0;
+    const ObjMesh mesh = load_obj(shared + "/scenes/meshes/" + mesh_name + ".obj", size_t(1) << 30);
+    std::vector<RayRecord> rays = read_rays(shared + "/rays/" + mesh_name + "_" + kind + ".rays");
+    if (limit > 0 && limit < rays.size()) rays.resize(limit);
+    std::vector<Answer> answers(rays.size());
+    const bool closest = query == "closest";
+    const double seconds = engine == "glint" ? run_glint(mesh, rays, closest, passes, answers)
+                                             : run_embree(mesh, rays, engine == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM,
+                                                          closest, passes, answers);
+    std::printf("%s %s %s %s: %.6f s a pass (fastest of %d), %zu rays, %.1f ns a ray\n", mesh_name.c_str(), kind.c_str(),
+                engine.c_str(), query.c_str(), seconds, passes, rays.size(), seconds / double(rays.size()) * 1e9);
+    if (argc > 8) {
+        std::FILE* f = std::fopen(argv[8], "wb");
+        if (f == nullptr || std::fwrite(answers.data(), sizeof(Answer), answers.size(), f) != answers.size()) return 1;
+        std::fclose(f);
+    }
+}
