@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "embree_scene.h"
 #include "geometry.h"
 #include "obj_loader.h"
 #include "ray_file.h"
@@ -55,21 +56,7 @@ struct Embree {
         device = rtcNewDevice("threads=1");  // the build is timed single-threaded, like glint's
         rtcSetDeviceMemoryMonitorFunction(
             device, [](void* self, ssize_t n, bool) { static_cast<Embree*>(self)->bytes += n; return true; }, this);
-        scene = rtcNewScene(device);
-        rtcSetSceneBuildQuality(scene, quality);
-        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                              3 * sizeof(float), mesh.vertices.size()));
-        for (size_t i = 0; i < mesh.vertices.size(); ++i)
-            for (int a = 0; a < 3; ++a) v[3 * i + a] = float(mesh.vertices[i][a]);
-        auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                   3 * sizeof(unsigned), mesh.triangles.size()));
-        for (size_t i = 0; i < mesh.triangles.size(); ++i)
-            for (int a = 0; a < 3; ++a) idx[3 * i + a] = mesh.triangles[i][a];
-        rtcSetGeometryBuildQuality(g, quality);
-        rtcCommitGeometry(g);
-        rtcAttachGeometry(scene, g);
-        rtcReleaseGeometry(g);
+        scene = new_embree_scene(device, mesh, quality);
         build_seconds = seconds([&] { rtcCommitScene(scene); });
     }
     ~Embree() {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "embree_scene.h"
 #include "geometry.h"
 #include "obj_loader.h"
 #include "ray_file.h"
@@ -72,21 +73,7 @@ double run_glint(const ObjMesh& mesh, const std::vector<RayRecord>& rays, bool c
 double run_embree(const ObjMesh& mesh, const std::vector<RayRecord>& rays, RTCBuildQuality quality, bool closest,
                   int passes, std::vector<Answer>& answers) {
     RTCDevice device = rtcNewDevice("threads=1");
-    RTCScene scene = rtcNewScene(device);
-    rtcSetSceneBuildQuality(scene, quality);
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(
-        rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
-    for (size_t i = 0; i < mesh.vertices.size(); ++i)
-        for (int a = 0; a < 3; ++a) v[3 * i + a] = float(mesh.vertices[i][a]);
-    auto* index = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(unsigned), mesh.triangles.size()));
-    for (size_t i = 0; i < mesh.triangles.size(); ++i)
-        for (int a = 0; a < 3; ++a) index[3 * i + a] = mesh.triangles[i][a];
-    rtcSetGeometryBuildQuality(g, quality);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(scene, g);
-    rtcReleaseGeometry(g);
+    RTCScene scene = new_embree_scene(device, mesh, quality);
     rtcCommitScene(scene);
     const double best = fastest_pass(rays.size(), passes, answers, [&](size_t i, Answer& a) {
         const RayRecord& r = rays[i];
