@@ -23,7 +23,9 @@
 
 #include <immintrin.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 
 #include "float_rounding.h"
 #include "ray.h"
@@ -51,11 +53,8 @@ public:
         constexpr float kPad = 1 + 0x1p-20f;  // above 1 + 2·gamma(4), with room for its own rounding
         const __m128 far_inv = _mm_mul_ps(inv, _mm_set1_ps(kPad));
         const __m128 near = _mm_blendv_ps(up, down, inv), far = _mm_blendv_ps(down, up, inv);
-        const auto negative = static_cast<unsigned>(_mm_movemask_ps(inv));
+        offsets_ = &kPlaneOffsets[_mm_movemask_ps(inv) & 7];
         for (int a = 0; a < 3; ++a) {
-            const auto flip = static_cast<int>(negative >> a & 1);
-            near_offset_[a] = kBvhWidth * (2 * a + flip);
-            far_offset_[a] = kBvhWidth * (2 * a + 1 - flip);
             near_origin_[a] = lane(near, a);
             far_origin_[a] = lane(far, a);
             inv_[a] = lane(inv, a);
@@ -68,12 +67,13 @@ public:
     // the eight entry distances. `tmax` is the ray's limit rounded up to float, in every lane.
     int hit(const WideBox& box, __m256 tmax, __m256& entry) const {
         const float* planes = &box.planes[0][0];
-        __m256 t_near = _mm256_max_ps(distance(planes, near_offset_[2], near_origin_[2], inv_[2]), tmin_);
-        t_near = _mm256_max_ps(distance(planes, near_offset_[1], near_origin_[1], inv_[1]), t_near);
-        t_near = _mm256_max_ps(distance(planes, near_offset_[0], near_origin_[0], inv_[0]), t_near);
-        __m256 t_far = _mm256_min_ps(distance(planes, far_offset_[2], far_origin_[2], far_inv_[2]), tmax);
-        t_far = _mm256_min_ps(distance(planes, far_offset_[1], far_origin_[1], far_inv_[1]), t_far);
-        t_far = _mm256_min_ps(distance(planes, far_offset_[0], far_origin_[0], far_inv_[0]), t_far);
+        const PlaneOffsets& at = *offsets_;
+        __m256 t_near = _mm256_max_ps(distance(planes, at.near[2], near_origin_[2], inv_[2]), tmin_);
+        t_near = _mm256_max_ps(distance(planes, at.near[1], near_origin_[1], inv_[1]), t_near);
+        t_near = _mm256_max_ps(distance(planes, at.near[0], near_origin_[0], inv_[0]), t_near);
+        __m256 t_far = _mm256_min_ps(distance(planes, at.far[2], far_origin_[2], far_inv_[2]), tmax);
+        t_far = _mm256_min_ps(distance(planes, at.far[1], far_origin_[1], far_inv_[1]), t_far);
+        t_far = _mm256_min_ps(distance(planes, at.far[0], far_origin_[0], far_inv_[0]), t_far);
         entry = t_near;
         return _mm256_movemask_ps(_mm256_cmp_ps(t_near, t_far, _CMP_LE_OQ));
     }
@@ -81,13 +81,31 @@ public:
 private:
     // Lane i of v in all eight lanes.
     static __m256 lane(__m128 v, int i) { return _mm256_permutevar8x32_ps(_mm256_castps128_ps256(v), _mm256_set1_epi32(i)); }
-    // Distances to eight planes along one axis.
-    static __m256 distance(const float* planes, int offset, __m256 origin, __m256 inv) {
-        return _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(planes + offset), origin), inv);
+    // Distances to eight planes along one axis, `offset` bytes from the first plane.
+    static __m256 distance(const float* planes, intptr_t offset, __m256 origin, __m256 inv) {
+        const auto* plane = reinterpret_cast<const float*>(reinterpret_cast<const char*>(planes) + offset);
+        return _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(plane), origin), inv);
     }
 
+    // Where an axis' near and far planes lie, in bytes from the first plane, for each octant of
+    // the direction (bit a set: negative along axis a, which swaps that axis' planes). Read from
+    // this table rather than set up per ray, and in bytes, so the loads need no scaling.
+    struct PlaneOffsets {
+        intptr_t near[3], far[3];
+    };
+    static constexpr std::array<PlaneOffsets, 8> kPlaneOffsets = [] {
+        std::array<PlaneOffsets, 8> table{};
+        for (int octant = 0; octant < 8; ++octant)
+            for (int a = 0; a < 3; ++a) {
+                const int flip = octant >> a & 1;
+                table[octant].near[a] = intptr_t{sizeof(float)} * kBvhWidth * (2 * a + flip);
+                table[octant].far[a] = intptr_t{sizeof(float)} * kBvhWidth * (2 * a + 1 - flip);
+            }
+        return table;
+    }();
+
     __m256 near_origin_[3], far_origin_[3], inv_[3], far_inv_[3], tmin_;
-    int near_offset_[3], far_offset_[3];  // in floats from the first plane
+    const PlaneOffsets* offsets_;
 };
 
 }  // namespace glint
