@@ -113,8 +113,10 @@ public:
                 if (ref == kStackEnd) return found;
                 if (test(ChildRef::first(ref), ChildRef::count(ref), ray)) {
                     // Only a hit moves the limit; rounding it costs more than the test's share.
+                    // Rounded in AVX, without the branch of the scalar rounding: whether the
+                    // nearest float lies below the hit's distance is a coin toss.
                     found = true;
-                    tmax = to_float_up(ray.tmax);
+                    tmax = _mm_cvtss_f32(to_float_up(_mm256_set1_pd(ray.tmax)));
                     tmax8 = _mm256_set1_ps(tmax);
                     cull = cull_key(tmax);
                 }
