@@ -41,24 +41,35 @@ struct RayShear {
     double ox, oy, oz;
 
     explicit RayShear(const Ray& ray) {
-        // Branch-free: the axes by table and conditional moves, the three divisions in one
-        // instruction (each lane rounds as its scalar division would).
-        const double d[3] = {ray.d.x, ray.d.y, ray.d.z}, o[3] = {ray.o.x, ray.o.y, ray.o.z};
-        const double ax = std::fabs(d[0]), ay = std::fabs(d[1]), az = std::fabs(d[2]);
-        kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);  // max_axis(abs(d))
-        static constexpr int kNext[3] = {1, 2, 0};
-        const int next = kNext[kz], after = kNext[next];
-        const bool flip = d[kz] < 0;  // keep the winding, so the edge signs mean the same
-        kx = flip ? after : next;
-        ky = flip ? next : after;
-        alignas(32) double q[4];
-        _mm256_store_pd(q, _mm256_div_pd(_mm256_setr_pd(d[kx], d[ky], 1.0, 1.0), _mm256_set1_pd(d[kz])));
+        // Branch-free, as a diffuse ray's dominant axis is anyone's guess: the axes from tables
+        // indexed by the three comparisons of max_axis(abs(d)) and by the sign along the chosen
+        // axis, the direction and the origin put in the permuted order by one VPERMPS each, and
+        // the three divisions in one instruction (each lane rounds as its scalar division would).
+        const double ax = std::fabs(ray.d.x), ay = std::fabs(ray.d.y), az = std::fabs(ray.d.z);
+        static constexpr int kDominant[8] = {2, 2, 2, 0, 1, 2, 1, 0};  // by (ay > az, ax > az, ax > ay)
+        kz = kDominant[unsigned(ax > ay) | unsigned(ax > az) << 1 | unsigned(ay > az) << 2];
+        const __m256d d = _mm256_setr_pd(ray.d.x, ray.d.y, ray.d.z, 0.0);
+        // A negative dominant component swaps x and y, which keeps the winding, so the edge
+        // functions' signs mean the same for every ray.
+        const unsigned negative = static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_LT_OQ)));
+        const unsigned flip = negative >> kz & 1;
+        static constexpr int kX[3][2] = {{1, 2}, {2, 0}, {0, 1}}, kY[3][2] = {{2, 1}, {0, 2}, {1, 0}};
+        kx = kX[kz][flip];
+        ky = kY[kz][flip];
+        const __m256i order = _mm256_setr_epi32(2 * kx, 2 * kx + 1, 2 * ky, 2 * ky + 1, 2 * kz, 2 * kz + 1, 2 * kz, 2 * kz + 1);
+        const auto permuted = [&](__m256d v) {
+            return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), order));
+        };
+        const __m256d pd = permuted(d);  // d[kx], d[ky], d[kz], d[kz]
+        alignas(32) double q[4], po[4];
+        _mm256_store_pd(q, _mm256_div_pd(_mm256_blend_pd(pd, _mm256_set1_pd(1.0), 0b1100), _mm256_permute4x64_pd(pd, 0xAA)));
+        _mm256_store_pd(po, permuted(_mm256_setr_pd(ray.o.x, ray.o.y, ray.o.z, 0.0)));
         sx = q[0];
         sy = q[1];
         sz = q[2];
-        ox = o[kx];
-        oy = o[ky];
-        oz = o[kz];
+        ox = po[0];
+        oy = po[1];
+        oz = po[2];
     }
 };
 
