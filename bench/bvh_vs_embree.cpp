@@ -32,11 +32,21 @@ double seconds(const std::function<void()>& f) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-double median_seconds(const std::function<void()>& f) {
-    std::vector<double> t;
-    for (int i = 0; i < g_repeats; ++i) t.push_back(seconds(f));
-    std::sort(t.begin(), t.end());
-    return t[t.size() / 2];
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+// Runs each of `runs` (each returns the seconds it measured) once a round, g_repeats rounds, and
+// returns each one's median. Interleaved rather than one block per engine, so that a burst of load
+// on this shared machine falls on every engine alike instead of on whichever ran during it.
+std::vector<double> interleaved_medians(const std::vector<std::function<double()>>& runs) {
+    std::vector<std::vector<double>> times(runs.size());
+    for (int round = 0; round < g_repeats; ++round)
+        for (size_t i = 0; i < runs.size(); ++i) times[i].push_back(runs[i]());
+    std::vector<double> medians;
+    for (const std::vector<double>& t : times) medians.push_back(median(t));
+    return medians;
 }
 
 // Runs f(i) for every ray, in chunks, on `threads` threads.
@@ -82,15 +92,6 @@ struct Embree {
     }
 };
 
-// Embree's build timed as glint's is: the median of the repeats, each a fresh scene (a single
-// build also paid for set-up that later builds do not, and the machine's noise with it).
-double embree_build_seconds(const ObjMesh& mesh, RTCBuildQuality quality) {
-    std::vector<double> t(static_cast<size_t>(g_repeats));
-    for (double& s : t) const Embree scene(mesh, quality, s);
-    std::sort(t.begin(), t.end());
-    return t[t.size() / 2];
-}
-
 Ray to_ray(const RayRecord& r) { return Ray{{r.o[0], r.o[1], r.o[2]}, {r.d[0], r.d[1], r.d[2]}, r.tmin, r.tmax}; }
 
 HitRecord glint_closest(const Geometry& g, const RayRecord& r) {
@@ -103,14 +104,6 @@ bool agree(const HitRecord& a, const HitRecord& b) {
     if ((a.prim == kNoPrimitive) != (b.prim == kNoPrimitive)) return false;
     if (a.prim == kNoPrimitive) return true;
     return std::fabs(a.t - b.t) <= 1e-6 + 1e-4 * std::max(a.t, b.t);
-}
-
-struct Rates {
-    double one, two;
-};
-Rates mrays(size_t n, const std::function<void(ThreadPool&)>& trace) {
-    ThreadPool one(1), two(2);
-    return {double(n) / median_seconds([&] { trace(one); }) / 1e6, double(n) / median_seconds([&] { trace(two); }) / 1e6};
 }
 
 std::vector<std::string> g_build_rows, g_ray_rows;
@@ -127,10 +120,15 @@ void bench_mesh(const std::string& shared, const std::string& name) {
     const std::vector<Triangle> triangles = to_triangles(mesh);
     const size_t n_tris = triangles.size();
     Geometry glint_bvh;
-    const double glint_build = median_seconds([&] { glint_bvh = Geometry({}, triangles, Accelerator::bvh); });
+    // Every build a fresh one (a single build also paid for set-up that later builds do not);
+    // Embree's timed around rtcCommitScene alone.
+    const std::vector<double> builds = interleaved_medians({
+        [&] { return seconds([&] { glint_bvh = Geometry({}, triangles, Accelerator::bvh); }); },
+        [&] { double s; const Embree scene(mesh, RTC_BUILD_QUALITY_MEDIUM, s); return s; },
+        [&] { double s; const Embree scene(mesh, RTC_BUILD_QUALITY_HIGH, s); return s; },
+    });
+    const double glint_build = builds[0], medium_build = builds[1], high_build = builds[2];
     const double glint_bytes = double(glint_bvh.memory_bytes()) / double(n_tris);
-    const double medium_build = embree_build_seconds(mesh, RTC_BUILD_QUALITY_MEDIUM);
-    const double high_build = embree_build_seconds(mesh, RTC_BUILD_QUALITY_HIGH);
     double unused;
     const Embree medium(mesh, RTC_BUILD_QUALITY_MEDIUM, unused);
     const Embree high(mesh, RTC_BUILD_QUALITY_HIGH, unused);
@@ -150,17 +148,28 @@ void bench_mesh(const std::string& shared, const std::string& name) {
         for (size_t i = 0; i < n; ++i) disagree += !agree(a[i], b[i]);
         for (size_t i = 0; i < n; ++i)
             occlusion_disagree += glint_bvh.occluded(to_ray(rays[i]), kNoPrimitive) != medium.occluded(rays[i]);
-        const Rates gc = mrays(n, [&](ThreadPool& p) { for_rays(p, n, [&](size_t i) { a[i] = glint_closest(glint_bvh, rays[i]); }); });
-        const Rates mc = mrays(n, [&](ThreadPool& p) { for_rays(p, n, [&](size_t i) { b[i] = medium.closest(rays[i]); }); });
-        const Rates hc = mrays(n, [&](ThreadPool& p) { for_rays(p, n, [&](size_t i) { b[i] = high.closest(rays[i]); }); });
         std::vector<char> o(n);
-        const Rates ga = mrays(n, [&](ThreadPool& p) { for_rays(p, n, [&](size_t i) { o[i] = glint_bvh.occluded(to_ray(rays[i]), kNoPrimitive); }); });
-        const Rates ma = mrays(n, [&](ThreadPool& p) { for_rays(p, n, [&](size_t i) { o[i] = medium.occluded(rays[i]); }); });
+        ThreadPool one(1), two(2);
+        // Each query on each engine with 1 and 2 threads, as seconds a pass.
+        const auto pass = [&](ThreadPool& pool, const std::function<void(size_t)>& f) {
+            return [&pool, &f, n] { return seconds([&] { for_rays(pool, n, f); }); };
+        };
+        const std::function<void(size_t)> glint_c = [&](size_t i) { a[i] = glint_closest(glint_bvh, rays[i]); };
+        const std::function<void(size_t)> medium_c = [&](size_t i) { b[i] = medium.closest(rays[i]); };
+        const std::function<void(size_t)> high_c = [&](size_t i) { b[i] = high.closest(rays[i]); };
+        const std::function<void(size_t)> glint_a = [&](size_t i) { o[i] = glint_bvh.occluded(to_ray(rays[i]), kNoPrimitive); };
+        const std::function<void(size_t)> medium_a = [&](size_t i) { o[i] = medium.occluded(rays[i]); };
+        const std::vector<double> t = interleaved_medians({pass(one, glint_c), pass(one, medium_c), pass(one, high_c),
+                                                           pass(two, glint_c), pass(two, medium_c), pass(two, high_c),
+                                                           pass(one, glint_a), pass(one, medium_a), pass(two, glint_a),
+                                                           pass(two, medium_a)});
+        std::vector<double> rate;  // Mrays/s, in the order above
+        for (const double seconds_a_pass : t) rate.push_back(double(n) / seconds_a_pass / 1e6);
         g_ray_rows.push_back(format("| %s_%s | closest | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f | %zu |", name.c_str(),
-                                    kind, gc.one, gc.two, mc.one, mc.two, hc.one, hc.two, gc.one / std::max(mc.one, hc.one),
-                                    disagree));
-        g_ray_rows.push_back(format("| %s_%s | any-hit | %.2f / %.2f | %.2f / %.2f | | %.2f | %zu |", name.c_str(), kind, ga.one,
-                                    ga.two, ma.one, ma.two, ga.one / ma.one, occlusion_disagree));
+                                    kind, rate[0], rate[3], rate[1], rate[4], rate[2], rate[5],
+                                    rate[0] / std::max(rate[1], rate[2]), disagree));
+        g_ray_rows.push_back(format("| %s_%s | any-hit | %.2f / %.2f | %.2f / %.2f | | %.2f | %zu |", name.c_str(), kind, rate[6],
+                                    rate[8], rate[7], rate[9], rate[6] / rate[7], occlusion_disagree));
     }
 }
 

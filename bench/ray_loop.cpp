@@ -6,7 +6,9 @@
 // (Embree's build qualities); QUERY: closest | any. Prints the fastest pass. LIMIT traces only the
 // first rays (0: all): a few thousand rays traced many times stay in the cache. DUMP writes each
 // answer (closest: t, primitive and glint's barycentrics as doubles; any: 0 or 1), to compare two
-// builds bit for bit with cmp.
+// builds bit for bit with cmp. With RAY_LOOP_REPEAT=i in the environment, every ray traced is ray
+// i of the set: its branches become predictable, which tells the cost of mispredicted branches
+// from the rest.
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -111,6 +113,7 @@ int main(int argc, char** argv) {
     const ObjMesh mesh = load_obj(shared + "/scenes/meshes/" + mesh_name + ".obj", size_t(1) << 30);
     std::vector<RayRecord> rays = read_rays(shared + "/rays/" + mesh_name + "_" + kind + ".rays");
     if (limit > 0 && limit < rays.size()) rays.resize(limit);
+    if (const char* repeat = std::getenv("RAY_LOOP_REPEAT")) std::fill(rays.begin(), rays.end(), rays.at(std::strtoull(repeat, nullptr, 10)));
     std::vector<Answer> answers(rays.size());
     const bool closest = query == "closest";
     const double seconds = engine == "glint" ? run_glint(mesh, rays, closest, passes, answers)
