@@ -46,7 +46,7 @@ struct RayShear {
         // axis, the direction and the origin put in the permuted order by one VPERMPS each, and
         // the three divisions in one instruction (each lane rounds as its scalar division would).
         const double ax = std::fabs(ray.d.x), ay = std::fabs(ray.d.y), az = std::fabs(ray.d.z);
-        static constexpr int kDominant[8] = {2, 2, 2, 0, 1, 2, 1, 0};  // by (ay > az, ax > az, ax > ay)
+        static constexpr int kDominant[8] = {2, 2, 2, 0, 1, 2, 1, 0};  // bits: ax > ay, ax > az, ay > az
         kz = kDominant[unsigned(ax > ay) | unsigned(ax > az) << 1 | unsigned(ay > az) << 2];
         const __m256d d = _mm256_setr_pd(ray.d.x, ray.d.y, ray.d.z, 0.0);
         // A negative dominant component swaps x and y, which keeps the winding, so the edge
