@@ -53,9 +53,9 @@ struct RayShear {
         // functions' signs mean the same for every ray.
         const unsigned negative = static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_LT_OQ)));
         const unsigned flip = negative >> kz & 1;
-        static constexpr int kX[3][2] = {{1, 2}, {2, 0}, {0, 1}}, kY[3][2] = {{2, 1}, {0, 2}, {1, 0}};
+        static constexpr int kX[3][2] = {{1, 2}, {2, 0}, {0, 1}};
         kx = kX[kz][flip];
-        ky = kY[kz][flip];
+        ky = 3 - kz - kx;  // the remaining axis
         const __m256i order = _mm256_setr_epi32(2 * kx, 2 * kx + 1, 2 * ky, 2 * ky + 1, 2 * kz, 2 * kz + 1, 2 * kz, 2 * kz + 1);
         const auto permuted = [&](__m256d v) {
             return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), order));
