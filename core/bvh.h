@@ -77,7 +77,26 @@ public:
     template <typename Test>
     [[gnu::always_inline]] bool closest(Ray& ray, Test&& test) const {
         if (nodes_.empty()) return false;
-        const RayBoxTest box(ray);
+        // Nearly every ray takes the fused box test, so the branch is predicted.
+        if (FusedRayBoxTest::covers(ray)) return closest(ray, FusedRayBoxTest(ray), test);
+        return closest(ray, RayBoxTest(ray), test);
+    }
+
+    // Any hit in (tmin, tmax]: `test(first, count, ray)` returns whether one of the leaf's
+    // primitives blocks the ray.
+    template <typename Test>
+    [[gnu::always_inline]] bool any(const Ray& ray, Test&& test) const {
+        if (nodes_.empty()) return false;
+        if (FusedRayBoxTest::covers(ray)) return any(ray, FusedRayBoxTest(ray), test);
+        return any(ray, RayBoxTest(ray), test);
+    }
+
+private:
+    // Each level leaves at most 7 behind, and the bottom holds kStackEnd.
+    static constexpr int kStackSize = (kBvhWidth - 1) * kMaxDepth + 2;
+
+    template <typename BoxTest, typename Test>
+    [[gnu::always_inline]] bool closest(Ray& ray, const BoxTest& box, Test& test) const {
         const BvhNode* const nodes = nodes_.data();  // held here: the tests' stores might alias nodes_
         uint64_t stack[kStackSize];
         stack[0] = kStackEnd;  // entry distance 0: never culled
@@ -129,12 +148,8 @@ public:
         }
     }
 
-    // Any hit in (tmin, tmax]: `test(first, count, ray)` returns whether one of the leaf's
-    // primitives blocks the ray.
-    template <typename Test>
-    [[gnu::always_inline]] bool any(const Ray& ray, Test&& test) const {
-        if (nodes_.empty()) return false;
-        const RayBoxTest box(ray);
+    template <typename BoxTest, typename Test>
+    [[gnu::always_inline]] bool any(const Ray& ray, const BoxTest& box, Test& test) const {
         const BvhNode* const nodes = nodes_.data();
         const __m256 tmax = _mm256_set1_ps(to_float_up(ray.tmax));
         uint32_t stack[kStackSize + 1];  // + 1: push_others stores eight words to push at most seven
@@ -159,9 +174,6 @@ public:
         }
     }
 
-private:
-    // Each level leaves at most 7 behind, and the bottom holds kStackEnd.
-    static constexpr int kStackSize = (kBvhWidth - 1) * kMaxDepth + 2;
     // The bottom of the traversal stack, so that popping needs no emptiness test: a ChildRef
     // that reads as a leaf, which the leaf branch checks for (2.3 leaf visits a Sponza diffuse
     // ray against 7.7 pops), but that no real leaf can be, as its first position is out of range.

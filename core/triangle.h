@@ -63,7 +63,7 @@ struct RayShear {
         const __m256d pd = permuted(d);  // d[kx], d[ky], d[kz], d[kz]
         alignas(32) double q[4], po[4];
         _mm256_store_pd(q, _mm256_div_pd(_mm256_blend_pd(pd, _mm256_set1_pd(1.0), 0b1100), _mm256_permute4x64_pd(pd, 0xAA)));
-        _mm256_store_pd(po, permuted(_mm256_setr_pd(ray.o.x, ray.o.y, ray.o.z, 0.0)));
+        _mm256_store_pd(po, permuted(_mm256_setr_pd(ray.o.x, ray.o.y, ray.o.z, 1.0)));  // lane 3: see FusedRayBoxTest::covers
         sx = q[0];
         sy = q[1];
         sz = q[2];

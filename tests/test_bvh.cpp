@@ -130,12 +130,15 @@ TEST(Bvh, Avx512PathAnswersBitForBitAsAvx2) {
     }
 }
 
-// The box test is conservative: a box rounded outward around a point of the double ray, a
+// Both box tests are conservative: a box rounded outward around a point of the double ray, a
 // float ulp or two wide (the tightest boxes there are, so the padding of the far distances
 // is all that keeps them: without it most of these fail), is never rejected, whatever the
-// ray's origin, direction (axis-parallel, signed zeros) and distance to the point.
+// ray's origin, direction (axis-parallel, signed zeros) and distance to the point. The points
+// lie as close as 10^-4 of the origin's magnitude, where rounding o·inv to nearest instead of
+// outward would lose the fused test boxes.
 TEST(Bvh, BoxTestNeverRejectsATightBoxAroundAPointOfTheRay) {
     Rng rng(20, 0, 0);
+    int fused = 0;
     for (int i = 0; i < 20000; ++i) {
         const double scale = std::pow(10.0, rng.uniform() * 8 - 3);
         const Vec3 o = (Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 2 - Vec3{1}) * scale;
@@ -152,9 +155,88 @@ TEST(Bvh, BoxTestNeverRejectsATightBoxAroundAPointOfTheRay) {
                 box.planes[2 * a + 1][slot] = to_float_up(p + error);
             }
         }
+        const __m256 tmax = _mm256_set1_ps(std::numeric_limits<float>::infinity());
         __m256 entry;
-        EXPECT_EQ(RayBoxTest(ray).hit(box, _mm256_set1_ps(std::numeric_limits<float>::infinity()), entry), 0xFF) << "ray " << i;
+        EXPECT_EQ(RayBoxTest(ray).hit(box, tmax, entry), 0xFF) << "ray " << i;
+        if (!FusedRayBoxTest::covers(ray)) continue;
+        ++fused;
+        EXPECT_EQ(FusedRayBoxTest(ray).hit(box, tmax, entry), 0xFF) << "ray " << i;
     }
+    EXPECT_GT(fused, 9000);
+}
+
+// The fused test covers the rays of a render and leaves the others to the slab test: a zero
+// direction component (its reciprocal is infinite), tmin < 0 or NaN, magnitudes whose products
+// could leave float's range.
+TEST(Bvh, FusedBoxTestCoversOrdinaryRaysOnly) {
+    const Vec3 o{1, 2, 3}, d = normalize(Vec3{1, -2, 3});
+    EXPECT_TRUE(FusedRayBoxTest::covers(Ray{o, d}));
+    EXPECT_TRUE(FusedRayBoxTest::covers(Ray{{0, 0, 0}, d, 0.5, 7}));
+    EXPECT_TRUE(FusedRayBoxTest::covers(Ray{o, d, -0.0}));
+    EXPECT_FALSE(FusedRayBoxTest::covers(Ray{o, {0.0, 0.6, 0.8}}));
+    EXPECT_FALSE(FusedRayBoxTest::covers(Ray{o, {0.6, -0.0, 0.8}}));
+    EXPECT_FALSE(FusedRayBoxTest::covers(Ray{o, {1e-30, 0.6, 0.8}}));
+    EXPECT_FALSE(FusedRayBoxTest::covers(Ray{o, d, -1}));
+    EXPECT_FALSE(FusedRayBoxTest::covers(Ray{o, d, std::numeric_limits<double>::quiet_NaN()}));
+    EXPECT_FALSE(FusedRayBoxTest::covers(Ray{{1e30, 0, 0}, d}));
+}
+
+// The interval of t in which the ray crosses box `slot`, in double: empty when lo > hi.
+std::pair<double, double> exact_slab(const Ray& ray, const WideBox& box, int slot) {
+    double lo = ray.tmin, hi = ray.tmax;
+    for (int a = 0; a < 3; ++a) {
+        double t0 = (box.planes[2 * a][slot] - ray.o[a]) / ray.d[a], t1 = (box.planes[2 * a + 1][slot] - ray.o[a]) / ray.d[a];
+        if (t0 > t1) std::swap(t0, t1);
+        lo = std::max(lo, t0);
+        hi = std::min(hi, t1);
+    }
+    return {lo, hi};
+}
+
+// The fused test is not merely conservative: on boxes around points near the ray it accepts
+// the boxes the slab test accepts, but for boxes that the ray misses or meets by a hair (within
+// a few float ulps of the origin's coordinates, as seen along the ray), and its entry distances
+// agree with the slab test's to that precision.
+TEST(Bvh, FusedBoxTestAgreesWithTheSlabTest) {
+    Rng rng(21, 0, 0);
+    int accepted = 0, rejected = 0;
+    for (int i = 0; i < 5000; ++i) {
+        const Ray ray{Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 20 - Vec3{10},
+                      sample_uniform_sphere(rng.uniform(), rng.uniform()), i % 2 ? 0.0 : -0.0, 5 + 20 * rng.uniform()};
+        WideBox box;
+        for (int slot = 0; slot < kBvhWidth; ++slot) {
+            const Vec3 near_ray = ray.o + ray.d * (rng.uniform() * 30 - 3);
+            for (int a = 0; a < 3; ++a) {
+                const double lo = near_ray[a] + rng.uniform() * 2 - 1.5;
+                box.planes[2 * a][slot] = to_float_down(lo);
+                box.planes[2 * a + 1][slot] = to_float_up(lo + rng.uniform() * 2);
+            }
+        }
+        const __m256 tmax = _mm256_set1_ps(to_float_up(ray.tmax));
+        alignas(32) float slab_entry[kBvhWidth], fused_entry[kBvhWidth];
+        __m256 e;
+        const int slab = RayBoxTest(ray).hit(box, tmax, e);
+        _mm256_store_ps(slab_entry, e);
+        const int fused = FusedRayBoxTest(ray).hit(box, tmax, e);
+        _mm256_store_ps(fused_entry, e);
+        // A few float ulps of the origin, in t.
+        const double steepest = std::min({std::fabs(ray.d.x), std::fabs(ray.d.y), std::fabs(ray.d.z)});
+        const double hair = 1e-6 * (1 + max_component(abs(ray.o))) / steepest;
+        const auto disagree = static_cast<unsigned>(slab ^ fused), both = static_cast<unsigned>(slab & fused);
+        for (int slot = 0; slot < kBvhWidth; ++slot) {
+            if (disagree >> slot & 1) {
+                const auto [lo, hi] = exact_slab(ray, box, slot);
+                EXPECT_LT(std::fabs(hi - lo), hair) << "ray " << i << " slot " << slot;
+            }
+            if (both >> slot & 1) {
+                EXPECT_NEAR(fused_entry[slot], std::max(slab_entry[slot], 0.0f), hair) << "ray " << i;
+            }
+        }
+        accepted += std::popcount(static_cast<unsigned>(slab));
+        rejected += kBvhWidth - std::popcount(static_cast<unsigned>(slab));
+    }
+    EXPECT_GT(accepted, 5000);
+    EXPECT_GT(rejected, 5000);
 }
 
 // The four-wide directed roundings of a ray's setup agree bit for bit with the scalar ones,
