@@ -201,12 +201,12 @@ private:
     }
 
     // Each child as one sortable key, entry distance above and ChildRef below, in slot order.
-    // An entry distance is kept as the bits of a non-negative float, whose order as an unsigned
-    // integer is its order as a number: a negative entry (a ray with tmin < 0) becomes +0, which
-    // only keeps more subtrees from being culled. Built in AVX and read back one load per key,
-    // against two loads, a shift and an or per key from the entry distances stored alone.
+    // An entry distance is kept as the bits of a non-negative float (the box tests give no
+    // other), whose order as an unsigned integer is its order as a number. Built in AVX and read
+    // back one load per key, against two loads, a shift and an or per key from the entry
+    // distances stored alone.
     static void store_keys(__m256 entries, const BvhNode& node, uint64_t* keys) {
-        const __m256i entry = _mm256_castps_si256(_mm256_max_ps(entries, _mm256_setzero_ps()));
+        const __m256i entry = _mm256_castps_si256(entries);
         const __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
         // The unpacks interleave within 128-bit halves: with the 64-bit quarters first ordered
         // 0, 2, 1, 3, the low unpack yields the keys of slots 0-3 and the high one those of 4-7.

@@ -96,7 +96,8 @@ public:
     }
 
     // Bit i of the result is set when box i overlaps the ray in (tmin, tmax]; `entry` receives
-    // the eight entry distances. `tmax` is the ray's limit rounded up to float, in every lane.
+    // the eight entry distances, none negative. `tmax` is the ray's limit rounded up to float,
+    // in every lane.
     int hit(const WideBox& box, __m256 tmax, __m256& entry) const {
         const PlaneOffsets& at = *offsets_;
         __m256 t_near = _mm256_max_ps(distance(box, at.near[2], near_origin_[2], inv_[2]), tmin_);
@@ -105,7 +106,9 @@ public:
         __m256 t_far = _mm256_min_ps(distance(box, at.far[2], far_origin_[2], far_inv_[2]), tmax);
         t_far = _mm256_min_ps(distance(box, at.far[1], far_origin_[1], far_inv_[1]), t_far);
         t_far = _mm256_min_ps(distance(box, at.far[0], far_origin_[0], far_inv_[0]), t_far);
-        entry = t_near;
+        // A negative entry (a ray with tmin < 0) becomes +0, so that every entry's bits order
+        // as the number does (see Bvh::store_keys); it only keeps more subtrees from being culled.
+        entry = _mm256_max_ps(t_near, _mm256_setzero_ps());
         return _mm256_movemask_ps(_mm256_cmp_ps(t_near, t_far, _CMP_LE_OQ));
     }
 

@@ -5,8 +5,8 @@
 #include "commands.h"
 
 int main(int argc, char** argv) {
-    if (!__builtin_cpu_supports("avx2")) {  // built with -mavx2 (see CMakeLists.txt)
-        std::fprintf(stderr, "glint: this processor lacks AVX2, which this build of glint needs\n");
+    if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) {  // built with -mavx2 -mfma (see CMakeLists.txt)
+        std::fprintf(stderr, "glint: this processor lacks AVX2 or FMA, which this build of glint needs\n");
         return 1;
     }
     CLI::App app{"glint: a path-tracing renderer"};
