@@ -1,7 +1,7 @@
 // The slab test of one ray against the eight child boxes of a BVH node at once, in AVX single
 // precision, made conservative: it never rejects a box that the exact test with the double ray
-// would accept. Two implementations: RayBoxTest for every ray, and FusedRayBoxTest, twice as
-// short a chain of dependent instructions, for the rays of a render (see there).
+// would accept. Two implementations: RayBoxTest for every ray, and FusedRayBoxTest, a shorter
+// chain of dependent instructions, for the rays of a render (see there).
 //
 // Three sources of error, three remedies:
 // - The double origin is rounded to float in the direction that can only widen each slab's
@@ -122,7 +122,7 @@ private:
     const PlaneOffsets* offsets_;
 };
 
-// The same test for the rays of a render, with half the latency: a node visit cannot begin
+// The same test for the rays of a render, with a shorter latency: a node visit cannot begin
 // before the box test of its parent ends, so the test's chain of dependent instructions sets the
 // pace of the traversal. RayBoxTest's chain: a subtraction, a multiplication, three dependent
 // float maxima and a compare; this one's: a fused multiply-subtract, two integer maxima (of
