@@ -132,10 +132,9 @@ private:
 //   its own (outward()). What is left is the error analysis of RayBoxTest with one rounding
 //   fewer: the reciprocal's and the fused operation's for a near distance, and the padding's
 //   besides for a far one, which kFarPad covers.
-// - Maxima and minima compare the distances' bits as signed integers (one cycle against four):
-//   that is the order of non-negative floats, and every negative float lies below every
-//   non-negative one. With tmin >= +0 among its operands, the entry's maximum is the float
-//   maximum. The exit's minimum is the float minimum when no operand is negative; otherwise it
+// - Maxima and minima compare the distances' bits as signed integers: that is the order of
+//   non-negative floats, and every negative float lies below every non-negative one. With
+//   tmin >= +0 among its operands, the entry's maximum is the float maximum. The exit's minimum is the float minimum when no operand is negative; otherwise it
 //   is negative, below the entry, and the box is rejected, as it is by the exact test.
 // - No NaN arises: the reciprocals are finite and nonzero, o·inv is finite, and a plane at
 //   infinity (an unused slot) gives ±inf. (RayBoxTest absorbs its NaNs through VMAXPS's operand
