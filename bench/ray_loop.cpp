@@ -2,8 +2,8 @@
 // time: the step-by-step measurements of the BVH work (bench/BENCHMARKS.md) alternate two builds
 // of this on the same set, and callgrind counts just the loop (`--toggle-collect='*trace_pass*'`).
 //   ray_loop SHARED_DIR MESH KIND ENGINE QUERY PASSES [LIMIT [DUMP]]
-// MESH: a mesh of SHARED_DIR/scenes/meshes; KIND: primary | diffuse; ENGINE: glint | medium | high
-// (Embree's build qualities); QUERY: closest | any. Prints the fastest pass. LIMIT traces only the
+// MESH: a mesh of SHARED_DIR/scenes/meshes; KIND: primary | diffuse; ENGINE: glint | glint-split
+// (glint's tree with spatial splits) | medium | high (Embree's build qualities); QUERY: closest | any. Prints the fastest pass. LIMIT traces only the
 // first rays (0: all): a few thousand rays traced many times stay in the cache. DUMP writes each
 // answer (closest: t, primitive and glint's barycentrics as doubles; any: 0 or 1), to compare two
 // builds bit for bit with cmp. With RAY_LOOP_REPEAT=i in the environment, every ray traced is ray
@@ -56,9 +56,9 @@ double fastest_pass(size_t n, int passes, std::vector<Answer>& answers, Trace&& 
     return best;
 }
 
-double run_glint(const ObjMesh& mesh, const std::vector<RayRecord>& rays, bool closest, int passes,
+double run_glint(const ObjMesh& mesh, const std::vector<RayRecord>& rays, BvhBuild build, bool closest, int passes,
                  std::vector<Answer>& answers) {
-    const Geometry geometry({}, to_triangles(mesh), Accelerator::bvh);
+    const Geometry geometry({}, to_triangles(mesh), Accelerator::bvh, build);
     return fastest_pass(rays.size(), passes, answers, [&](size_t i, Answer& a) {
         const RayRecord& r = rays[i];
         const Ray ray{{r.o[0], r.o[1], r.o[2]}, {r.d[0], r.d[1], r.d[2]}, r.tmin, r.tmax};
@@ -104,7 +104,7 @@ double run_embree(const ObjMesh& mesh, const std::vector<RayRecord>& rays, RTCBu
 
 int main(int argc, char** argv) {
     if (argc < 7) {
-        std::fprintf(stderr, "usage: ray_loop SHARED_DIR MESH KIND glint|medium|high closest|any PASSES [LIMIT [DUMP]]\n");
+        std::fprintf(stderr, "usage: ray_loop SHARED_DIR MESH KIND glint|glint-split|medium|high closest|any PASSES [LIMIT [DUMP]]\n");
         return 2;
     }
     const std::string shared = argv[1], mesh_name = argv[2], kind = argv[3], engine = argv[4], query = argv[5];
@@ -116,8 +116,10 @@ int main(int argc, char** argv) {
     if (const char* repeat = std::getenv("RAY_LOOP_REPEAT")) std::fill(rays.begin(), rays.end(), rays.at(std::strtoull(repeat, nullptr, 10)));
     std::vector<Answer> answers(rays.size());
     const bool closest = query == "closest";
-    const double seconds = engine == "glint" ? run_glint(mesh, rays, closest, passes, answers)
-                                             : run_embree(mesh, rays, engine == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM,
+    const bool glint = engine == "glint" || engine == "glint-split";
+    const BvhBuild build = engine == "glint-split" ? BvhBuild::spatial_splits : BvhBuild::binned;
+    const double seconds = glint ? run_glint(mesh, rays, build, closest, passes, answers)
+                                 : run_embree(mesh, rays, engine == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM,
                                                           closest, passes, answers);
     std::printf("%s %s %s %s: %.6f s a pass (fastest of %d), %zu rays, %.1f ns a ray\n", mesh_name.c_str(), kind.c_str(),
                 engine.c_str(), query.c_str(), seconds, passes, rays.size(), seconds / double(rays.size()) * 1e9);

@@ -68,9 +68,10 @@ private:
 
 }  // namespace
 
-Bvh Bvh::build(std::span<const Bounds3> prim_bounds) {
-    if (prim_bounds.size() > ChildRef::kMaxPrimitives) throw std::length_error("too many primitives for one BVH");
-    BinaryTree tree = build_sah_tree(prim_bounds);
+Bvh Bvh::build(std::span<const Bounds3> prim_bounds, const SpatialSplits* splits) {
+    const double references = double(prim_bounds.size()) * (1 + (splits ? splits->budget : 0));
+    if (references > ChildRef::kMaxPrimitives) throw std::length_error("too many primitives for one BVH");
+    BinaryTree tree = build_sah_tree(prim_bounds, splits);
     Bvh bvh;
     if (!tree.nodes.empty()) bvh.nodes_ = Collapser(tree.nodes).run();
     bvh.tree_size_ = static_cast<uint32_t>(tree.order.size());

@@ -51,11 +51,13 @@ public:
 
     Bvh() = default;
     // Builds over primitives 0..n-1; primitives with empty boxes are left out of the tree.
-    // Throws std::length_error beyond ChildRef::kMaxPrimitives primitives.
-    static Bvh build(std::span<const Bounds3> prim_bounds);
+    // With `splits` (triangles only), the tree may hold a primitive in several leaves.
+    // Throws std::length_error beyond ChildRef::kMaxPrimitives references.
+    static Bvh build(std::span<const Bounds3> prim_bounds, const SpatialSplits* splits = nullptr);
 
-    // Build order: position -> primitive. The primitives in the tree come first (the leaves
-    // cover positions 0..tree_size()-1), those left out follow.
+    // Build order: position -> primitive. The tree's references come first (the leaves cover
+    // positions 0..tree_size()-1; with spatial splits a primitive may appear more than once),
+    // the primitives left out follow.
     const std::vector<uint32_t>& order() const { return order_; }
     uint32_t tree_size() const { return tree_size_; }
     const std::vector<BvhNode>& nodes() const { return nodes_; }

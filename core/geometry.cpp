@@ -18,7 +18,8 @@ void Geometry::set_isa(Isa isa) {
     isa_ = isa;
 }
 
-Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles, Accelerator accelerator)
+Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles, Accelerator accelerator,
+                   BvhBuild build)
     : spheres_(std::move(spheres)), accelerator_(accelerator) {
     std::vector<PackedTriangle> packed;
     std::vector<Bounds3> triangle_bounds;
@@ -46,20 +47,29 @@ Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& tri
     for (const Sphere& s : spheres_) sphere_bounds.push_back(s.bounds());
     sphere_bvh_ = Bvh::build(sphere_bounds);
 
-    triangle_bvh_ = Bvh::build(triangle_bounds);
+    std::vector<Triangle> unpacked;
+    if (build == BvhBuild::spatial_splits) {
+        unpacked.reserve(packed.size());
+        for (const PackedTriangle& p : packed) unpacked.push_back(p.unpack());
+    }
+    const SpatialSplits splits{unpacked};
+    triangle_bvh_ = Bvh::build(triangle_bounds, build == BvhBuild::spatial_splits ? &splits : nullptr);
     triangle_at_ = triangle_bvh_.order();
     position_of_.resize(packed.size());
     for (uint32_t pos = 0; pos < triangle_at_.size(); ++pos) position_of_[triangle_at_[pos]] = pos;
     store_runs(packed, triangle_at_);
+    triangle_at_.insert(triangle_at_.end(), triangle_run::kPadding, kNoPrimitive);
 }
 
 void Geometry::store_runs(const std::vector<PackedTriangle>& packed, const std::vector<uint32_t>& triangle_at) {
-    run_slot_.assign(packed.size(), uint8_t{1 << 4});
+    triangle_count_ = packed.size();
+    const size_t positions = triangle_at.empty() ? packed.size() : triangle_at.size();
+    run_slot_.assign(positions, uint8_t{1 << 4});
     triangle_bvh_.for_each_leaf([&](uint32_t first, uint32_t count) {
         for (uint32_t i = 0; i < count; ++i) run_slot_[first + i] = static_cast<uint8_t>(count << 4 | i);
     });
-    triangle_runs_.assign(9 * packed.size() + triangle_run::kPadding, 0.0f);
-    for (uint32_t pos = 0; pos < packed.size(); ++pos)
+    triangle_runs_.assign(9 * positions + triangle_run::kPadding, 0.0f);
+    for (uint32_t pos = 0; pos < positions; ++pos)
         triangle_run::put(&triangle_runs_[run_start(pos)], run_size(pos), run_index(pos),
                           packed[triangle_at.empty() ? pos : triangle_at[pos]]);
 }
@@ -70,35 +80,40 @@ size_t Geometry::memory_bytes() const {
            (triangle_at_.size() + position_of_.size()) * sizeof(uint32_t);
 }
 
-uint32_t Geometry::position(uint32_t prim) const {
-    if (prim < spheres_.size() || prim - spheres_.size() >= run_slot_.size()) return kNoPrimitive;
-    const auto index = static_cast<uint32_t>(prim - spheres_.size());
-    return position_of_.empty() ? index : position_of_[index];
+uint32_t Geometry::triangle_index(uint32_t prim) const {
+    if (prim < spheres_.size() || prim - spheres_.size() >= triangle_count_) return kNoPrimitive;
+    return static_cast<uint32_t>(prim - spheres_.size());
 }
 
-namespace {
+uint32_t Geometry::position(uint32_t prim) const {
+    const uint32_t index = triangle_index(prim);
+    return position_of_.empty() || index == kNoPrimitive ? index : position_of_[index];
+}
 
 static_assert(BinaryTree::kMaxLeafSize <= triangle_run::kMaxSize, "a leaf must fit one run test");
 
-// The lane of position `pos` in the run starting at `first`, as a mask: 0 from four lanes on
-// (kNoPrimitive and positions before `first` included), by table rather than by a test and a
-// shift. A lane past the end of a shorter run names no triangle of it, and the run test looks
-// only at the run's own lanes.
-unsigned lane_mask(uint32_t pos, uint32_t first) {
-    static constexpr unsigned kLane[triangle_run::kMaxSize + 1] = {0b1, 0b10, 0b100, 0b1000, 0};
-    return kLane[std::min(pos - first, triangle_run::kMaxSize)];
+// Without a tree (runs of one, positions in triangle order) by table: 0 from four lanes on
+// (kNoPrimitive and positions before `first` included). With one, by comparing the run's four
+// triangle indices, as spatial splits may put a triangle in several leaves. A lane past the end
+// of a shorter run names no triangle of it, and the run test looks only at the run's own lanes.
+inline unsigned Geometry::lanes_of(uint32_t index, uint32_t first) const {
+    if (triangle_at_.empty()) {
+        static constexpr unsigned kLane[triangle_run::kMaxSize + 1] = {0b1, 0b10, 0b100, 0b1000, 0};
+        return kLane[std::min(index - first, triangle_run::kMaxSize)];
+    }
+    const __m128i indices = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&triangle_at_[first]));
+    const __m128i same = _mm_cmpeq_epi32(indices, _mm_set1_epi32(static_cast<int>(index)));
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(same)));
 }
-
-}  // namespace
 
 // A triangle is flat, so a ray leaving it cannot meet it again; a sphere is told, so that it
 // keeps only the far root (see Sphere::intersect).
 inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
-    const uint32_t skip = position(self);
+    const uint32_t skip = triangle_index(self);
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto test_run = [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
-        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lane_mask(skip, first), r, hit.triangle);
+        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lanes_of(skip, first), r, hit.triangle);
         if (i < 0) return false;
         const uint32_t pos = first + static_cast<uint32_t>(i);
         hit.t = r.tmax = hit.triangle.t;
@@ -107,7 +122,7 @@ inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const 
     };
     if (accelerator_ == Accelerator::bvh) return triangle_bvh_.closest(ray, test_run);
     bool found = false;
-    for (uint32_t pos = 0; pos < run_slot_.size(); ++pos) found |= test_run(pos, 1, ray);
+    for (uint32_t pos = 0; pos < triangle_count_; ++pos) found |= test_run(pos, 1, ray);
     return found;
 }
 
@@ -160,15 +175,15 @@ bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
 }
 
 inline bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
-    const uint32_t skip = position(self), wanted = position(target);
+    const uint32_t skip = triangle_index(self), wanted = triangle_index(target);
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) __attribute__((always_inline)) {
-        const unsigned left_out = lane_mask(skip, first) | lane_mask(wanted, first);
+        const unsigned left_out = lanes_of(skip, first) | lanes_of(wanted, first);
         return run_test.any(&triangle_runs_[9 * size_t(first)], count, left_out, r);
     };
     if (accelerator_ == Accelerator::bvh) return triangle_bvh_.any(ray, blocks);
-    for (uint32_t pos = 0; pos < run_slot_.size(); ++pos)
+    for (uint32_t pos = 0; pos < triangle_count_; ++pos)
         if (blocks(pos, 1, ray)) return true;
     return false;
 }

@@ -17,6 +17,10 @@ namespace glint {
 enum class Accelerator { automatic, bvh, list };
 inline constexpr uint32_t kListMaxPrimitives = 16;
 
+// How the triangles' tree is built: binned SAH alone, or with spatial splits besides (see
+// sah_builder.h), which builds slower and traces faster where long or oblique triangles overlap.
+enum class BvhBuild { binned, spatial_splits };
+
 // The instruction set the triangle queries run in. Both paths compute 256-bit vectors and
 // answer bit for bit alike; AVX-512VL's EVEX encoding gives them 32 vector registers instead of
 // AVX2's 16, room for more of the box test's ray constants (GCC still leaves some on the stack;
@@ -42,11 +46,11 @@ class Geometry {
 public:
     Geometry() = default;
     Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles,
-             Accelerator accelerator = Accelerator::automatic);
+             Accelerator accelerator = Accelerator::automatic, BvhBuild build = BvhBuild::binned);
 
     size_t sphere_count() const { return spheres_.size(); }
-    size_t triangle_count() const { return run_slot_.size(); }
-    uint32_t primitive_count() const { return static_cast<uint32_t>(spheres_.size() + run_slot_.size()); }
+    size_t triangle_count() const { return triangle_count_; }
+    uint32_t primitive_count() const { return static_cast<uint32_t>(spheres_.size() + triangle_count_); }
     bool is_sphere(uint32_t prim) const { return prim < spheres_.size(); }
     const Sphere& sphere(uint32_t prim) const { return spheres_[prim]; }
     Triangle triangle(uint32_t prim) const { return packed(position(prim)).unpack(); }
@@ -71,9 +75,13 @@ public:
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
 
 private:
-    // Where triangle `prim` is stored (its position in the tree's order, when there is a tree),
-    // or kNoPrimitive when prim is not a triangle.
+    // Where triangle `prim` is stored (one of its positions in the tree's order, when there is
+    // a tree), or kNoPrimitive when prim is not a triangle.
     uint32_t position(uint32_t prim) const;
+    // Triangle `prim`'s index among the triangles, or kNoPrimitive when prim is not a triangle.
+    uint32_t triangle_index(uint32_t prim) const;
+    // The lanes of the run at position `first` that hold triangle `index` (any of its copies).
+    unsigned lanes_of(uint32_t index, uint32_t first) const;
     // The triangle at `pos`: its run's size, its index in the run and where the run starts.
     uint32_t run_size(uint32_t pos) const { return run_slot_[pos] >> 4; }
     uint32_t run_index(uint32_t pos) const { return run_slot_[pos] & 15; }
@@ -98,11 +106,14 @@ private:
     // (triangle_run layout), every other triangle a run of one.
     std::vector<float> triangle_runs_;
     std::vector<uint8_t> run_slot_;            // position -> run size << 4 | index in the run
-    std::vector<uint32_t> triangle_at_;        // tree position -> triangle index (empty: identity)
+    // Tree position -> triangle index (empty: identity), with triangle_run::kPadding entries of
+    // kNoPrimitive after the last, for four-wide loads.
+    std::vector<uint32_t> triangle_at_;
     std::vector<uint32_t> position_of_;        // triangle index -> tree position (empty: identity)
     Accelerator accelerator_ = Accelerator::bvh;  // never automatic once built
     Isa isa_ = best_isa();
     Bvh sphere_bvh_, triangle_bvh_;
+    size_t triangle_count_ = 0;
     size_t degenerate_ = 0;
 };
 

@@ -29,6 +29,11 @@ constexpr float kTraversalCost = 2.0f;
 // Below this depth SAH decides; deeper, splits fall back to the median so the tree's depth
 // (and so the traversal stack) stays bounded whatever the input.
 constexpr int kSahDepth = 64;
+// Spatial splits: the planes tried per axis, evenly spaced over the node's box, and Stich et
+// al.'s alpha: they are tried only where the object split's children overlap by more than this
+// share of the root's half area, as below that they gain little for a costly search.
+constexpr int kSpatialBins = 16;
+constexpr float kOverlapShare = 1e-5f;
 
 // A box in one SSE register per corner (x, y, z, unused): growing it is two instructions, which
 // is what binning does most. Float boxes rounded outward lose nothing the tree needs.
@@ -59,6 +64,15 @@ struct SseBox {
         _mm_store_ps(l, lo);
         _mm_store_ps(h, hi);
         return {{l[0], l[1], l[2]}, {h[0], h[1], h[2]}};
+    }
+    Bounds3 to_bounds() const {
+        const FloatBox f = to_float_box();
+        return {{f.lo[0], f.lo[1], f.lo[2]}, {f.hi[0], f.hi[1], f.hi[2]}};
+    }
+    // The float box around a double one.
+    static SseBox enclosing(const Bounds3& b) {
+        const FloatBox f = FloatBox::enclosing(b);
+        return {_mm_setr_ps(f.lo[0], f.lo[1], f.lo[2], 0), _mm_setr_ps(f.hi[0], f.hi[1], f.hi[2], 0)};
     }
 };
 
@@ -115,18 +129,31 @@ struct Split {
     float cost = std::numeric_limits<float>::infinity();
 };
 
+struct SpatialSplit {
+    int axis = -1;
+    double plane = 0;
+    float cost = std::numeric_limits<float>::infinity();
+};
+
+// Builds over prims_[0, n). A node owns a range of prims_ and the free slots after it up to its
+// capacity's end, which spatial splits fill with the references they add; each split shares
+// the free slots out between the children in proportion to their sizes (without spatial
+// splits there are none).
 class Builder {
 public:
-    explicit Builder(std::vector<BuildPrim> prims) : prims_(std::move(prims)) {}
+    Builder(std::vector<BuildPrim> prims, const SpatialSplits* splits) : prims_(std::move(prims)), splits_(splits) {}
 
     BinaryTree run() {
+        const auto n = static_cast<uint32_t>(prims_.size());
+        const auto capacity = splits_ ? n + static_cast<uint32_t>(splits_->budget * n) : n;
         BinaryTree tree;
-        tree.nodes.reserve(2 * prims_.size());
+        tree.nodes.reserve(2 * capacity);
         tree.nodes.push_back({});
         nodes_ = &tree.nodes;
-        build(0, 0, static_cast<uint32_t>(prims_.size()), 0);
-        tree.order.reserve(prims_.size());
-        for (const BuildPrim& p : prims_) tree.order.push_back(p.index);
+        prims_.resize(capacity);
+        root_area_ = extent(0, n).first.half_area();
+        build(0, 0, n, capacity, 0);
+        tree.order = compact(tree.nodes);
         return tree;
     }
 
@@ -151,7 +178,23 @@ private:
         return {bounds[0], centres[0]};
     }
 
-    void build(uint32_t node, uint32_t begin, uint32_t end, int depth) {
+    // The references of the leaves, in order, without the free slots left between them.
+    std::vector<uint32_t> compact(std::vector<BinaryNode>& nodes) const {
+        std::vector<BinaryNode*> leaves;
+        for (BinaryNode& node : nodes)
+            if (node.is_leaf()) leaves.push_back(&node);
+        std::sort(leaves.begin(), leaves.end(), [](const BinaryNode* a, const BinaryNode* b) { return a->first < b->first; });
+        std::vector<uint32_t> order;
+        order.reserve(prims_.size());
+        for (BinaryNode* leaf : leaves) {
+            const uint32_t first = leaf->first;
+            leaf->first = static_cast<uint32_t>(order.size());
+            for (uint32_t i = first; i < first + leaf->count; ++i) order.push_back(prims_[i].index);
+        }
+        return order;
+    }
+
+    void build(uint32_t node, uint32_t begin, uint32_t end, uint32_t capacity_end, int depth) {
         const auto [bounds, centres] = extent(begin, end);
         (*nodes_)[node].box = bounds.to_float_box();
         const uint32_t count = end - begin;
@@ -171,14 +214,126 @@ private:
             mid = static_cast<uint32_t>(first_right - prims_.begin());
         }
         if (mid == begin || mid == end) mid = median_split(begin, end, centres);
+        if (capacity_end > end && depth < kSahDepth && children_overlap(begin, mid, end) &&
+            split_spatially(node, begin, end, capacity_end, depth, split.cost, bounds))
+            return;
 
-        const auto left = static_cast<uint32_t>(nodes_->size());
-        (*nodes_)[node].first = left;
+        // The right-hand references move up by the left child's share of the free slots.
+        const auto to_left = static_cast<uint32_t>((capacity_end - end) * uint64_t{mid - begin} / count);
+        if (to_left > 0) std::move_backward(prims_.begin() + mid, prims_.begin() + end, prims_.begin() + end + to_left);
+        split_node(node, {begin, mid, mid + to_left}, {mid + to_left, end + to_left, capacity_end}, depth);
+    }
+
+    struct Range {
+        uint32_t begin, end, capacity_end;
+    };
+    void split_node(uint32_t node, Range left, Range right, int depth) {
+        const auto first = static_cast<uint32_t>(nodes_->size());
+        (*nodes_)[node].first = first;
         (*nodes_)[node].count = 0;
         nodes_->push_back({});
         nodes_->push_back({});
-        build(left, begin, mid, depth + 1);
-        build(left + 1, mid, end, depth + 1);
+        build(first, left.begin, left.end, left.capacity_end, depth + 1);
+        build(first + 1, right.begin, right.end, right.capacity_end, depth + 1);
+    }
+
+    // Whether the children of the object split at `mid` overlap enough for spatial splits.
+    bool children_overlap(uint32_t begin, uint32_t mid, uint32_t end) const {
+        SseBox overlap = extent(begin, mid).first;
+        const SseBox right = extent(mid, end).first;
+        overlap.lo = _mm_max_ps(overlap.lo, right.lo);
+        overlap.hi = _mm_min_ps(overlap.hi, right.hi);
+        return _mm_movemask_ps(_mm_cmpgt_ps(overlap.lo, overlap.hi)) == 0 && overlap.half_area() > kOverlapShare * root_area_;
+    }
+
+    // Splits the node by the best plane cutting its triangles if that costs less than
+    // `object_cost` and the free slots hold the references it adds; returns whether it did.
+    bool split_spatially(uint32_t node, uint32_t begin, uint32_t end, uint32_t capacity_end, int depth,
+                         float object_cost, const SseBox& bounds) {
+        const SpatialSplit spatial = best_spatial_split(begin, end, bounds);
+        if (!(spatial.cost < object_cost)) return false;
+        left_.clear();
+        right_.clear();
+        for (uint32_t i = begin; i < end; ++i) {
+            const BuildPrim& p = prims_[i];
+            const Bounds3 box = p.box.to_bounds();
+            if (box.hi[spatial.axis] <= spatial.plane) {
+                left_.push_back(p);
+            } else if (box.lo[spatial.axis] >= spatial.plane) {
+                right_.push_back(p);
+            } else {
+                Bounds3 below = box, above = box;
+                below.hi[spatial.axis] = above.lo[spatial.axis] = spatial.plane;
+                add_part(left_, p.index, below);
+                add_part(right_, p.index, above);
+            }
+        }
+        const auto n_left = static_cast<uint32_t>(left_.size()), n_right = static_cast<uint32_t>(right_.size());
+        if (n_left == 0 || n_right == 0 || n_left + n_right > capacity_end - begin) return false;
+        const auto to_left = static_cast<uint32_t>((capacity_end - begin - n_left - n_right) * uint64_t{n_left} / (n_left + n_right));
+        const uint32_t right_begin = begin + n_left + to_left;
+        std::copy(left_.begin(), left_.end(), prims_.begin() + begin);
+        std::copy(right_.begin(), right_.end(), prims_.begin() + right_begin);
+        split_node(node, {begin, begin + n_left, right_begin}, {right_begin, right_begin + n_right, capacity_end}, depth);
+        return true;
+    }
+
+    // Adds a reference to the part of triangle `prim` inside `box`, if there is one.
+    void add_part(std::vector<BuildPrim>& side, uint32_t prim, const Bounds3& box) const {
+        const Bounds3 part = splits_->triangles[prim].clipped_bounds(box);
+        if (!part.empty()) side.push_back({SseBox::enclosing(part), prim, {}});
+    }
+
+    // Along each axis, kSpatialBins slabs of the node's box: each reference's part in each slab
+    // it crosses grows that slab's box, and it counts as entering its first slab and leaving
+    // its last. A plane between slabs has on its left the references entering before it and on
+    // its right those leaving after it: the cost sums their counts times their boxes' areas.
+    SpatialSplit best_spatial_split(uint32_t begin, uint32_t end, const SseBox& node_box) const {
+        const Bounds3 bounds = node_box.to_bounds();
+        SpatialSplit best;
+        for (int a = 0; a < 3; ++a) {
+            const double lo = bounds.lo[a], hi = bounds.hi[a];
+            if (!(hi > lo)) continue;
+            const auto plane = [&](int b) { return lo + (hi - lo) * b / kSpatialBins; };
+            const auto slab = [&](double x) { return std::clamp(int((x - lo) * kSpatialBins / (hi - lo)), 0, kSpatialBins - 1); };
+            std::array<SseBox, kSpatialBins> boxes;
+            std::array<uint32_t, kSpatialBins> entering{}, leaving{};
+            for (uint32_t i = begin; i < end; ++i) {
+                const BuildPrim& p = prims_[i];
+                const Bounds3 box = p.box.to_bounds();
+                const int first = slab(box.lo[a]), last = slab(box.hi[a]);
+                ++entering[first];
+                ++leaving[last];
+                if (first == last) {
+                    boxes[first].extend(p.box);
+                    continue;
+                }
+                for (int b = first; b <= last; ++b) {
+                    Bounds3 part = box;
+                    part.lo[a] = std::max(box.lo[a], plane(b));
+                    part.hi[a] = std::min(box.hi[a], plane(b + 1));
+                    part = splits_->triangles[p.index].clipped_bounds(part);
+                    if (!part.empty()) boxes[b].extend(SseBox::enclosing(part));
+                }
+            }
+            std::array<float, kSpatialBins> right_cost{};
+            SseBox acc;
+            uint32_t n = 0;
+            for (int b = kSpatialBins - 1; b > 0; --b) {
+                acc.extend(boxes[b]);
+                n += leaving[b];
+                right_cost[b] = n > 0 ? acc.half_area() * float(n) : std::numeric_limits<float>::infinity();
+            }
+            acc = {};
+            n = 0;
+            for (int b = 0; b + 1 < kSpatialBins; ++b) {
+                acc.extend(boxes[b]);
+                n += entering[b];
+                const float cost = acc.half_area() * float(n) + right_cost[b + 1];
+                if (n > 0 && cost < best.cost) best = {a, plane(b + 1), cost};
+            }
+        }
+        return best;
     }
 
     void make_leaf(uint32_t node, uint32_t begin, uint32_t count) {
@@ -294,12 +449,15 @@ private:
     }
 
     std::vector<BuildPrim> prims_;
+    const SpatialSplits* splits_;
+    float root_area_ = 0;
+    std::vector<BuildPrim> left_, right_;  // a spatial split's children, before they are stored
     std::vector<BinaryNode>* nodes_ = nullptr;
 };
 
 }  // namespace
 
-BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds) {
+BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const SpatialSplits* splits) {
     std::vector<BuildPrim> prims;
     prims.reserve(prim_bounds.size());
     for (uint32_t i = 0; i < prim_bounds.size(); ++i) {
@@ -309,7 +467,7 @@ BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds) {
         prims.push_back({box, i, {}});
     }
     if (prims.empty()) return {};
-    return Builder(std::move(prims)).run();
+    return Builder(std::move(prims), splits).run();
 }
 
 }  // namespace glint

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bounds.h"
+#include "triangle.h"
 
 namespace glint {
 
@@ -29,7 +30,17 @@ struct BinaryTree {
     std::vector<uint32_t> order;    // build order: position -> primitive, the tree's primitives only
 };
 
-// Primitives with empty boxes are left out.
-BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds);
+// Spatial splits (Stich, Friedrich and Dietrich, "Spatial splits in bounding volume hierarchies",
+// HPG 2009): a node may also be split by a plane that cuts its triangles, each cut one becoming a
+// reference on both sides with the box of its part there, where that lowers the SAH cost. Long
+// or oblique triangles then stop filling their boxes' overlapping neighbours. The tree's order
+// may name a triangle several times.
+struct SpatialSplits {
+    std::span<const Triangle> triangles;  // primitive i is triangles[i]
+    double budget = 0.3;                  // at most this many references more per primitive
+};
+
+// Primitives with empty boxes are left out. `splits`, if given, allows spatial splits.
+BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const SpatialSplits* splits = nullptr);
 
 }  // namespace glint

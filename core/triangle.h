@@ -132,6 +132,9 @@ struct Triangle {
     }
 
     SurfaceInteraction interaction(const TriangleHit& hit, uint32_t prim) const;
+    // A box around the part of the triangle inside `box` (empty if none), for spatial splits:
+    // never smaller than that part, and at most a few float units wider.
+    Bounds3 clipped_bounds(const Bounds3& box) const;
 };
 
 // A triangle as the scene stores it: single-precision vertices (what OBJ files hold), 36 bytes
