@@ -1,7 +1,8 @@
 // glint's BVH against Embree 3 (Debian's libembree-dev; linked here only, never in glint) on the
 // identical shared ray sets: build times, Mrays/s for closest and any-hit queries at 1 and 2
 // threads, bytes per triangle, and whether the answers agree (ties at shared edges accepted, as
-// ../shared/rays/FORMAT.md §4 says). Prints a markdown table.
+// ../shared/rays/FORMAT.md §4 says). glint's binned tree faces Embree MEDIUM (binned SAH), its
+// tree with spatial splits Embree HIGH (spatial splits). Prints markdown tables.
 //   bvh_vs_embree SHARED_DIR [repeats]
 #include <embree3/rtcore.h>
 
@@ -119,57 +120,68 @@ void bench_mesh(const std::string& shared, const std::string& name) {
     const ObjMesh mesh = load_obj(shared + "/scenes/meshes/" + name + ".obj", size_t(1) << 30);
     const std::vector<Triangle> triangles = to_triangles(mesh);
     const size_t n_tris = triangles.size();
-    Geometry glint_bvh;
+    Geometry glint_bvh, split_bvh;
     // Every build a fresh one (a single build also paid for set-up that later builds do not);
     // Embree's timed around rtcCommitScene alone.
     const std::vector<double> builds = interleaved_medians({
         [&] { return seconds([&] { glint_bvh = Geometry({}, triangles, Accelerator::bvh); }); },
+        [&] { return seconds([&] { split_bvh = Geometry({}, triangles, Accelerator::bvh, BvhBuild::spatial_splits); }); },
         [&] { double s; const Embree scene(mesh, RTC_BUILD_QUALITY_MEDIUM, s); return s; },
         [&] { double s; const Embree scene(mesh, RTC_BUILD_QUALITY_HIGH, s); return s; },
     });
-    const double glint_build = builds[0], medium_build = builds[1], high_build = builds[2];
-    const double glint_bytes = double(glint_bvh.memory_bytes()) / double(n_tris);
     double unused;
     const Embree medium(mesh, RTC_BUILD_QUALITY_MEDIUM, unused);
     const Embree high(mesh, RTC_BUILD_QUALITY_HIGH, unused);
-    g_build_rows.push_back(format("| %s | %zu | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f |", name.c_str(), n_tris, glint_build * 1e3,
-                medium_build * 1e3, high_build * 1e3, glint_bytes, double(medium.bytes) / double(n_tris),
-                double(high.bytes) / double(n_tris)));
+    const auto per_triangle = [n_tris](size_t bytes) { return double(bytes) / double(n_tris); };
+    g_build_rows.push_back(format("| %s | %zu | %.1f / %.1f | %.1f / %.1f | %.2f / %.2f | %.1f / %.1f | %.1f / %.1f |", name.c_str(),
+                                  n_tris, builds[0] * 1e3, builds[1] * 1e3, builds[2] * 1e3, builds[3] * 1e3,
+                                  builds[0] / builds[2], builds[1] / builds[3], per_triangle(glint_bvh.memory_bytes()),
+                                  per_triangle(split_bvh.memory_bytes()), per_triangle(medium.bytes), per_triangle(high.bytes)));
     ThreadPool check_pool(2);
     for (const char* kind : {"primary", "diffuse"}) {
         const std::vector<RayRecord> rays = read_rays(shared + "/rays/" + name + "_" + kind + ".rays");
         const size_t n = rays.size();
         std::vector<HitRecord> a(n), b(n);
-        for_rays(check_pool, n, [&](size_t i) {
-            a[i] = glint_closest(glint_bvh, rays[i]);
-            b[i] = medium.closest(rays[i]);
-        });
-        size_t disagree = 0, occlusion_disagree = 0;
-        for (size_t i = 0; i < n; ++i) disagree += !agree(a[i], b[i]);
-        for (size_t i = 0; i < n; ++i)
-            occlusion_disagree += glint_bvh.occluded(to_ray(rays[i]), kNoPrimitive) != medium.occluded(rays[i]);
         std::vector<char> o(n);
+        // Each engine's answers against Embree MEDIUM's.
+        size_t disagree[2] = {}, occlusion_disagree[2] = {};
+        for_rays(check_pool, n, [&](size_t i) { b[i] = medium.closest(rays[i]); o[i] = medium.occluded(rays[i]); });
+        for (int e = 0; e < 2; ++e) {
+            const Geometry& g = e == 0 ? glint_bvh : split_bvh;
+            for_rays(check_pool, n, [&](size_t i) { a[i] = glint_closest(g, rays[i]); });
+            for (size_t i = 0; i < n; ++i) {
+                disagree[e] += !agree(a[i], b[i]);
+                occlusion_disagree[e] += g.occluded(to_ray(rays[i]), kNoPrimitive) != bool(o[i]);
+            }
+        }
         ThreadPool one(1), two(2);
         // Each query on each engine with 1 and 2 threads, as seconds a pass.
         const auto pass = [&](ThreadPool& pool, const std::function<void(size_t)>& f) {
             return [&pool, &f, n] { return seconds([&] { for_rays(pool, n, f); }); };
         };
-        const std::function<void(size_t)> glint_c = [&](size_t i) { a[i] = glint_closest(glint_bvh, rays[i]); };
-        const std::function<void(size_t)> medium_c = [&](size_t i) { b[i] = medium.closest(rays[i]); };
-        const std::function<void(size_t)> high_c = [&](size_t i) { b[i] = high.closest(rays[i]); };
-        const std::function<void(size_t)> glint_a = [&](size_t i) { o[i] = glint_bvh.occluded(to_ray(rays[i]), kNoPrimitive); };
-        const std::function<void(size_t)> medium_a = [&](size_t i) { o[i] = medium.occluded(rays[i]); };
-        const std::vector<double> t = interleaved_medians({pass(one, glint_c), pass(one, medium_c), pass(one, high_c),
-                                                           pass(two, glint_c), pass(two, medium_c), pass(two, high_c),
-                                                           pass(one, glint_a), pass(one, medium_a), pass(two, glint_a),
-                                                           pass(two, medium_a)});
-        std::vector<double> rate;  // Mrays/s, in the order above
-        for (const double seconds_a_pass : t) rate.push_back(double(n) / seconds_a_pass / 1e6);
-        g_ray_rows.push_back(format("| %s_%s | closest | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f | %zu |", name.c_str(),
-                                    kind, rate[0], rate[3], rate[1], rate[4], rate[2], rate[5],
-                                    rate[0] / std::max(rate[1], rate[2]), disagree));
-        g_ray_rows.push_back(format("| %s_%s | any-hit | %.2f / %.2f | %.2f / %.2f | | %.2f | %zu |", name.c_str(), kind, rate[6],
-                                    rate[8], rate[7], rate[9], rate[6] / rate[7], occlusion_disagree));
+        const std::function<void(size_t)> closest[4] = {
+            [&](size_t i) { a[i] = glint_closest(glint_bvh, rays[i]); }, [&](size_t i) { a[i] = glint_closest(split_bvh, rays[i]); },
+            [&](size_t i) { b[i] = medium.closest(rays[i]); }, [&](size_t i) { b[i] = high.closest(rays[i]); }};
+        const std::function<void(size_t)> any[4] = {
+            [&](size_t i) { o[i] = glint_bvh.occluded(to_ray(rays[i]), kNoPrimitive); },
+            [&](size_t i) { o[i] = split_bvh.occluded(to_ray(rays[i]), kNoPrimitive); },
+            [&](size_t i) { o[i] = medium.occluded(rays[i]); }, [&](size_t i) { o[i] = high.occluded(rays[i]); }};
+        std::vector<std::function<double()>> runs;
+        for (const auto* query : {closest, any})
+            for (ThreadPool* pool : {&one, &two})
+                for (int e = 0; e < 4; ++e) runs.push_back(pass(*pool, query[e]));
+        const std::vector<double> t = interleaved_medians(runs);
+        // rate[q][threads - 1][engine]: Mrays/s, engines glint, glint split, MEDIUM, HIGH.
+        double rate[2][2][4];
+        for (size_t i = 0; i < t.size(); ++i) rate[i / 8][i / 4 % 2][i % 4] = double(n) / t[i] / 1e6;
+        for (int q = 0; q < 2; ++q) {
+            const double(&r)[2][4] = rate[q];
+            g_ray_rows.push_back(format("| %s_%s | %s | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f | %.2f | %.2f | %zu / %zu |",
+                                        name.c_str(), kind, q == 0 ? "closest" : "any-hit", r[0][0], r[1][0], r[0][1], r[1][1],
+                                        r[0][2], r[1][2], r[0][3], r[1][3], r[0][0] / r[0][2], r[0][1] / r[0][3],
+                                        std::max(r[0][0], r[0][1]) / std::max(r[0][2], r[0][3]),
+                                        q == 0 ? disagree[0] : occlusion_disagree[0], q == 0 ? disagree[1] : occlusion_disagree[1]));
+        }
     }
 }
 
@@ -183,11 +195,11 @@ int main(int argc, char** argv) {
     if (argc > 2) g_repeats = std::max(1, std::atoi(argv[2]));
     const std::string shared = argv[1];
     for (const char* mesh : {"bunny", "sponza_dabrovic", "cornell_box"}) bench_mesh(shared, mesh);
-    std::printf("| mesh | triangles | glint build ms | Embree MEDIUM ms | Embree HIGH ms | glint B/tri | MEDIUM B/tri | HIGH B/tri |\n");
-    std::printf("|---|---|---|---|---|---|---|---|\n");
+    std::printf("| mesh | triangles | glint build ms: binned / split | Embree ms: MEDIUM / HIGH | glint / Embree build time: binned / MEDIUM, split / HIGH | glint B/tri: binned / split | Embree B/tri: MEDIUM / HIGH |\n");
+    std::printf("|---|---|---|---|---|---|---|\n");
     for (const auto& row : g_build_rows) std::printf("%s\n", row.c_str());
     std::printf("\nglint's triangle queries run in %s.\n", best_isa() == Isa::avx512 ? "AVX-512VL" : "AVX2");
-    std::printf("\n| ray set | query | glint Mrays/s, 1 / 2 threads | Embree MEDIUM | Embree HIGH | glint / best Embree, 1 thread | answers that differ |\n");
-    std::printf("|---|---|---|---|---|---|---|\n");
+    std::printf("\n| ray set | query | glint binned Mrays/s, 1 / 2 threads | glint split | Embree MEDIUM | Embree HIGH | binned / MEDIUM, 1 thread | split / HIGH | best glint / best Embree | answers differing from MEDIUM's: binned / split |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& row : g_ray_rows) std::printf("%s\n", row.c_str());
 }

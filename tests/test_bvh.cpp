@@ -317,6 +317,61 @@ TEST(Bvh, TreeIsWellFormed) {
     for (uint32_t i = 0; i < order.size(); ++i) EXPECT_EQ(order[i], i);
 }
 
+// Long triangles across the scene, in every orientation, among small ones: spatial splits cut
+// them into several leaves, and the tree must still answer as testing every triangle does,
+// also for rays leaving a triangle (which no copy of it may stop) and shadow rays to one.
+TEST(Bvh, SpatialSplitsAnswerAsBruteForce) {
+    Scene s = random_scene(17, 0, 3000);
+    Rng rng(18, 0, 0);
+    auto point = [&] { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 20 - Vec3{10}; };
+    for (int i = 0; i < 300; ++i) s.triangles.push_back({point(), point(), point()});
+    const Geometry split({}, s.triangles, Accelerator::bvh, BvhBuild::spatial_splits), list({}, s.triangles, Accelerator::list);
+    const Bvh& bvh = split.triangle_bvh();
+    ASSERT_GT(bvh.tree_size(), s.triangles.size() + 300) << "the long triangles should be split";
+    // Every position lies in one leaf, and every triangle is in the tree.
+    std::vector<int> seen(bvh.tree_size(), 0);
+    bvh.for_each_leaf([&](uint32_t first, uint32_t count) {
+        for (uint32_t k = first; k < first + count; ++k) ++seen[k];
+    });
+    for (int count : seen) EXPECT_EQ(count, 1);
+    std::vector<uint32_t> order(bvh.order());
+    std::sort(order.begin(), order.end());
+    order.erase(std::unique(order.begin(), order.end()), order.end());
+    EXPECT_EQ(order.size(), s.triangles.size());
+
+    for (int i = 0; i < 20000; ++i) {
+        const Vec3 o = Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 30 - Vec3{15};
+        expect_same_answers(split, list, Ray{o, sample_uniform_sphere(rng.uniform(), rng.uniform()), i % 3 == 0 ? -kInfinity : 0.0});
+    }
+    for (int i = 0; i < 5000; ++i) {
+        // From a point on one of the long triangles, with that triangle as `self`.
+        const auto self = static_cast<uint32_t>(3000 + rng.uniform() * 300);
+        const Triangle& t = s.triangles[self];
+        const double u = rng.uniform(), v = rng.uniform() * (1 - u);
+        const Ray ray{t.v0 * (1 - u - v) + t.v1 * u + t.v2 * v, sample_uniform_sphere(rng.uniform(), rng.uniform())};
+        Hit a, b;
+        ASSERT_EQ(split.intersect(ray, self, a), list.intersect(ray, self, b));
+        EXPECT_NE(a.prim, self);
+        EXPECT_EQ(a.t, b.t);
+        const auto target = static_cast<uint32_t>(rng.uniform() * 3300);
+        EXPECT_EQ(split.occluded(ray, self, target), list.occluded(ray, self, target));
+    }
+}
+
+TEST(Bvh, SpatialSplitsKeepAxisParallelRaysOnSharedEdges) {
+    std::vector<Triangle> triangles = grid(32);
+    triangles.push_back({{0, 0, 0.5}, {32, 32, 0.5}, {0, 32.5, 0.25}});  // a long one above, to split
+    const Geometry bvh({}, triangles, Accelerator::bvh, BvhBuild::spatial_splits), list({}, triangles, Accelerator::list);
+    Rng rng(19, 0, 0);
+    for (int i = 0; i < 3000; ++i) {
+        const Vec3 o{std::floor(rng.uniform() * 33), std::floor(rng.uniform() * 33), rng.uniform() < 0.5 ? 1.0 : -1.0};
+        for (double zero : {0.0, -0.0}) {
+            expect_same_answers(bvh, list, Ray{o, {zero, zero, -o.z}});
+            expect_same_answers(bvh, list, Ray{o, normalize(Vec3{1, zero, -o.z})});
+        }
+    }
+}
+
 TEST(Bvh, CoincidentPrimitivesStillBuildAShallowTree) {
     // 10,000 copies of one triangle: SAH finds no split, the median fallback must bound depth.
     const std::vector<Triangle> same(10000, Triangle{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
