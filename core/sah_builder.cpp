@@ -293,7 +293,7 @@ private:
         SpatialSplit best;
         for (int a = 0; a < 3; ++a) {
             const double lo = bounds.lo[a], hi = bounds.hi[a];
-            if (!(hi > lo)) continue;
+            if (!(hi > lo) || !std::isfinite(hi - lo)) continue;  // flat, or reaching infinity: no slabs
             const auto plane = [&](int b) { return lo + (hi - lo) * b / kSpatialBins; };
             const auto slab = [&](double x) { return std::clamp(int((x - lo) * kSpatialBins / (hi - lo)), 0, kSpatialBins - 1); };
             std::array<SseBox, kSpatialBins> boxes;
