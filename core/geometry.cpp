@@ -58,6 +58,7 @@ Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& tri
     position_of_.resize(packed.size());
     for (uint32_t pos = 0; pos < triangle_at_.size(); ++pos) position_of_[triangle_at_[pos]] = pos;
     store_runs(packed, triangle_at_);
+    split_triangles_ = triangle_at_.size() > packed.size();
     triangle_at_.insert(triangle_at_.end(), triangle_run::kPadding, kNoPrimitive);
 }
 
@@ -92,24 +93,28 @@ uint32_t Geometry::position(uint32_t prim) const {
 
 static_assert(BinaryTree::kMaxLeafSize <= triangle_run::kMaxSize, "a leaf must fit one run test");
 
-// Without a tree (runs of one, positions in triangle order) by table: 0 from four lanes on
-// (kNoPrimitive and positions before `first` included). With one, by comparing the run's four
-// triangle indices, as spatial splits may put a triangle in several leaves. A lane past the end
-// of a shorter run names no triangle of it, and the run test looks only at the run's own lanes.
-inline unsigned Geometry::lanes_of(uint32_t index, uint32_t first) const {
-    if (triangle_at_.empty()) {
+uint32_t Geometry::leave_out_key(uint32_t prim) const { return split_triangles_ ? triangle_index(prim) : position(prim); }
+
+// Where each triangle has one position, by table on the position: 0 from four lanes on
+// (kNoPrimitive and positions before `first` included). With split triangles, by comparing the
+// run's four triangle indices, which cost the binned tree 1-4% (bench/BENCHMARKS.md, eighth
+// round), so only there. A lane
+// past the end of a shorter run names no triangle of it, and the run test looks only at the
+// run's own lanes.
+inline unsigned Geometry::lanes_of(uint32_t key, uint32_t first) const {
+    if (!split_triangles_) {
         static constexpr unsigned kLane[triangle_run::kMaxSize + 1] = {0b1, 0b10, 0b100, 0b1000, 0};
-        return kLane[std::min(index - first, triangle_run::kMaxSize)];
+        return kLane[std::min(key - first, triangle_run::kMaxSize)];
     }
     const __m128i indices = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&triangle_at_[first]));
-    const __m128i same = _mm_cmpeq_epi32(indices, _mm_set1_epi32(static_cast<int>(index)));
+    const __m128i same = _mm_cmpeq_epi32(indices, _mm_set1_epi32(static_cast<int>(key)));
     return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(same)));
 }
 
 // A triangle is flat, so a ray leaving it cannot meet it again; a sphere is told, so that it
 // keeps only the far root (see Sphere::intersect).
 inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
-    const uint32_t skip = triangle_index(self);
+    const uint32_t skip = leave_out_key(self);
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto test_run = [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
@@ -175,7 +180,7 @@ bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
 }
 
 inline bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
-    const uint32_t skip = triangle_index(self), wanted = triangle_index(target);
+    const uint32_t skip = leave_out_key(self), wanted = leave_out_key(target);
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) __attribute__((always_inline)) {

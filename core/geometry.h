@@ -80,8 +80,11 @@ private:
     uint32_t position(uint32_t prim) const;
     // Triangle `prim`'s index among the triangles, or kNoPrimitive when prim is not a triangle.
     uint32_t triangle_index(uint32_t prim) const;
-    // The lanes of the run at position `first` that hold triangle `index` (any of its copies).
-    unsigned lanes_of(uint32_t index, uint32_t first) const;
+    // What lanes_of() looks for to leave triangle `prim` out: its position, or with split
+    // triangles its index (kNoPrimitive when prim is not a triangle).
+    uint32_t leave_out_key(uint32_t prim) const;
+    // The lanes of the run at position `first` that hold the triangle of leave_out_key() `key`.
+    unsigned lanes_of(uint32_t key, uint32_t first) const;
     // The triangle at `pos`: its run's size, its index in the run and where the run starts.
     uint32_t run_size(uint32_t pos) const { return run_slot_[pos] >> 4; }
     uint32_t run_index(uint32_t pos) const { return run_slot_[pos] & 15; }
@@ -114,6 +117,7 @@ private:
     Isa isa_ = best_isa();
     Bvh sphere_bvh_, triangle_bvh_;
     size_t triangle_count_ = 0;
+    bool split_triangles_ = false;  // some triangle lies in several leaves (BvhBuild::spatial_splits)
     size_t degenerate_ = 0;
 };
 
