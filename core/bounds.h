@@ -22,6 +22,12 @@ struct Bounds3 {
     }
 };
 
+// The box the two have in common; Bounds3{} when they have none (empty() looks at x only).
+inline Bounds3 overlap(const Bounds3& a, const Bounds3& b) {
+    const Bounds3 o{max(a.lo, b.lo), min(a.hi, b.hi)};
+    return o.lo.x <= o.hi.x && o.lo.y <= o.hi.y && o.lo.z <= o.hi.z ? o : Bounds3{};
+}
+
 // Rounds a double box outward to float, so the stored box always contains the exact one.
 struct FloatBox {
     float lo[3];

@@ -294,9 +294,12 @@ private:
         for (int a = 0; a < 3; ++a) {
             const double lo = bounds.lo[a], hi = bounds.hi[a];
             if (!(hi > lo) || !std::isfinite(hi - lo)) continue;  // flat, or reaching infinity: no slabs
+            const double scale = kSpatialBins / (hi - lo);
             const auto plane = [&](int b) { return lo + (hi - lo) * b / kSpatialBins; };
-            const auto slab = [&](double x) { return std::clamp(int((x - lo) * kSpatialBins / (hi - lo)), 0, kSpatialBins - 1); };
-            std::array<SseBox, kSpatialBins> boxes;
+            const auto slab = [&](double x) { return std::clamp(int((x - lo) * scale), 0, kSpatialBins - 1); };
+            // In double: rounding each part's box outward to float cost more than the rest of the
+            // binning.
+            std::array<Bounds3, kSpatialBins> boxes;
             std::array<uint32_t, kSpatialBins> entering{}, leaving{};
             for (uint32_t i = begin; i < end; ++i) {
                 const BuildPrim& p = prims_[i];
@@ -305,31 +308,27 @@ private:
                 ++entering[first];
                 ++leaving[last];
                 if (first == last) {
-                    boxes[first].extend(p.box);
+                    boxes[first].extend(box);
                     continue;
                 }
-                for (int b = first; b <= last; ++b) {
-                    Bounds3 part = box;
-                    part.lo[a] = std::max(box.lo[a], plane(b));
-                    part.hi[a] = std::min(box.hi[a], plane(b + 1));
-                    part = splits_->triangles[p.index].clipped_bounds(part);
-                    if (!part.empty()) boxes[b].extend(SseBox::enclosing(part));
-                }
+                // Estimated: the triangle's part in each slab, cut down to the reference's box.
+                const Triangle& triangle = splits_->triangles[p.index];
+                for (int b = first; b <= last; ++b) boxes[b].extend(overlap(triangle.slab_bounds(a, plane(b), plane(b + 1)), box));
             }
-            std::array<float, kSpatialBins> right_cost{};
-            SseBox acc;
+            std::array<double, kSpatialBins> right_cost{};
+            Bounds3 acc;
             uint32_t n = 0;
             for (int b = kSpatialBins - 1; b > 0; --b) {
                 acc.extend(boxes[b]);
                 n += leaving[b];
-                right_cost[b] = n > 0 ? acc.half_area() * float(n) : std::numeric_limits<float>::infinity();
+                right_cost[b] = n > 0 ? acc.half_area() * n : kInfinity;
             }
             acc = {};
             n = 0;
             for (int b = 0; b + 1 < kSpatialBins; ++b) {
                 acc.extend(boxes[b]);
                 n += entering[b];
-                const float cost = acc.half_area() * float(n) + right_cost[b + 1];
+                const auto cost = static_cast<float>(acc.half_area() * n + right_cost[b + 1]);
                 if (n > 0 && cost < best.cost) best = {a, plane(b + 1), cost};
             }
         }

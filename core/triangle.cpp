@@ -55,6 +55,25 @@ Bounds3 Triangle::clipped_bounds(const Bounds3& box) const {
     return part;
 }
 
+Bounds3 Triangle::slab_bounds(int axis, double lower, double upper) const {
+    const Vec3* v[3] = {&v0, &v1, &v2};
+    Bounds3 part;
+    for (int i = 0; i < 3; ++i) {
+        const Vec3& a = *v[i];
+        const Vec3& b = *v[(i + 1) % 3];
+        if (a[axis] >= lower && a[axis] <= upper) part.extend(a);
+        // The edge from a to b crosses each plane strictly between its ends at most once.
+        for (const double plane : {lower, upper}) {
+            if ((a[axis] < plane && plane < b[axis]) || (b[axis] < plane && plane < a[axis])) {
+                Vec3 q = a + (b - a) * ((plane - a[axis]) / (b[axis] - a[axis]));
+                q[axis] = plane;
+                part.extend(q);
+            }
+        }
+    }
+    return part;
+}
+
 SurfaceInteraction Triangle::interaction(const TriangleHit& hit, uint32_t prim) const {
     // Interpolating the vertices, rather than evaluating o + t·d, bounds the error by the
     // vertices' magnitudes only (pbrt-v4: gamma(7) over the weighted vertices).

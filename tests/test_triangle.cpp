@@ -142,6 +142,31 @@ TEST(Triangle, ClippedBoundsHoldThePartInsideTheBox) {
     EXPECT_GT(inside, 1000);  // the test saw many points inside
 }
 
+// The spatial splits' cost estimate: a slab's box is the clipped box of the slab (unbounded
+// across it) but for rounding, for slabs through the triangle, beside it and holding a vertex.
+TEST(Triangle, SlabBoundsAreTheClippedBoundsOfTheSlab) {
+    Rng rng(37, 0, 0);
+    auto point = [&]() { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 2 - Vec3{1}; };
+    int nonempty = 0;
+    for (int i = 0; i < 2000; ++i) {
+        const Triangle t{point(), point(), point()};
+        const int axis = i % 3;
+        const double lower = rng.uniform() * 2.2 - 1.1, upper = lower + rng.uniform() * 0.5;
+        Bounds3 slab{Vec3{-kInfinity}, Vec3{kInfinity}};
+        slab.lo[axis] = lower;
+        slab.hi[axis] = upper;
+        const Bounds3 exact = t.clipped_bounds(slab), estimate = t.slab_bounds(axis, lower, upper);
+        ASSERT_EQ(exact.empty(), estimate.empty()) << i;
+        if (exact.empty()) continue;
+        ++nonempty;
+        for (int a = 0; a < 3; ++a) {
+            EXPECT_NEAR(estimate.lo[a], exact.lo[a], 1e-12) << i;
+            EXPECT_NEAR(estimate.hi[a], exact.hi[a], 1e-12) << i;
+        }
+    }
+    EXPECT_GT(nonempty, 500);
+}
+
 TEST(Triangle, RejectsDegenerateAndCoplanarCases) {
     TriangleHit hit;
     const Triangle sliver{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};          // zero area, collinear
