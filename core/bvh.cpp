@@ -1,5 +1,6 @@
 #include "bvh.h"
 
+#include <algorithm>
 #include <array>
 #include <stdexcept>
 
@@ -41,6 +42,7 @@ private:
             children[widest] = left;
             children[size++] = left + 1;
         }
+        order_for_any_hit(children, size);
         for (int slot = 0; slot < kBvhWidth; ++slot) set_slot(node, slot, slot < size ? &binary_[children[slot]] : nullptr);
         for (int slot = 0; slot < size; ++slot) {
             const BinaryNode& child = binary_[children[slot]];
@@ -50,6 +52,18 @@ private:
             nodes_[node].child[slot] = ChildRef::node(index);
             fill(index, child.first, 2);
         }
+    }
+
+    // The any-hit traversal visits a node's children in slot order and stops at the first hit,
+    // so the likeliest to block a ray go first: leaves, which are tested at once, then the
+    // largest boxes. The closest-hit traversal orders by distance and does not care. (Sponza's
+    // diffuse any-hit queries 16% faster on the binned tree, 17% on the split one; the other
+    // sets within noise: bench/BENCHMARKS.md, ninth round.)
+    void order_for_any_hit(std::array<uint32_t, kBvhWidth>& children, int size) const {
+        std::sort(children.begin(), children.begin() + size, [&](uint32_t a, uint32_t b) {
+            const BinaryNode &x = binary_[a], &y = binary_[b];
+            return x.is_leaf() != y.is_leaf() ? x.is_leaf() : x.half_area() > y.half_area();
+        });
     }
 
     void set_slot(uint32_t node, int slot, const BinaryNode* child) {

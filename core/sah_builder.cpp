@@ -31,8 +31,10 @@ constexpr float kTraversalCost = 2.0f;
 constexpr int kSahDepth = 64;
 // Spatial splits: the planes tried per axis, evenly spaced over the node's box, and Stich et
 // al.'s alpha: they are tried only where the object split's children overlap by more than this
-// share of the root's half area, as below that they gain little for a costly search.
-constexpr int kSpatialBins = 16;
+// share of the root's half area, as below that they gain little for a costly search. 32 slabs
+// against 16 (callgrind, Sponza's first 100k rays): 12% fewer instructions for the primary rays,
+// 4% for the diffuse ones; 48 gained no more, nor did alpha 1e-4 or 1e-6.
+constexpr int kSpatialBins = 32;
 constexpr float kOverlapShare = 1e-5f;
 
 // A box in one SSE register per corner (x, y, z, unused): growing it is two instructions, which
