@@ -33,9 +33,11 @@ constexpr int kSahDepth = 64;
 // al.'s alpha: they are tried only where the object split's children overlap by more than this
 // share of the root's half area, as below that they gain little for a costly search. 32 slabs
 // against 16 (callgrind, Sponza's first 100k rays): 12% fewer instructions for the primary rays,
-// 4% for the diffuse ones; 48 gained no more, nor did alpha 1e-4 or 1e-6.
+// 4% for the diffuse ones; 48 gained no more. Alpha 1e-3 against Stich et al.'s 1e-5: the same
+// instructions within 0.1% on Sponza and the bunny, in a third of the build time; 1e-2 cost
+// Sponza 0.4-0.8% (bench/BENCHMARKS.md, ninth round).
 constexpr int kSpatialBins = 32;
-constexpr float kOverlapShare = 1e-5f;
+constexpr float kOverlapShare = 1e-3f;
 
 // A box in one SSE register per corner (x, y, z, unused): growing it is two instructions, which
 // is what binning does most. Float boxes rounded outward lose nothing the tree needs.
