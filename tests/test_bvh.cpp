@@ -317,6 +317,30 @@ TEST(Bvh, TreeIsWellFormed) {
     for (uint32_t i = 0; i < order.size(); ++i) EXPECT_EQ(order[i], i);
 }
 
+// The any-hit traversal takes children in slot order, so the builder stores the likeliest
+// blockers first: the used slots lead, leaves before inner nodes, each group by falling area.
+TEST(Bvh, ChildrenAreStoredLeavesFirstThenLargestFirst) {
+    const Scene s = random_scene(16, 0, 5000);
+    const Geometry g(s.spheres, s.triangles);
+    int mixed = 0;  // nodes holding both leaves and inner nodes
+    for (const BvhNode& n : g.triangle_bvh().nodes()) {
+        const auto half_area = [&](int slot) {
+            const auto extent = [&](int a) { return double(n.boxes.planes[2 * a + 1][slot]) - n.boxes.planes[2 * a][slot]; };
+            return extent(0) * extent(1) + extent(1) * extent(2) + extent(2) * extent(0);
+        };
+        const auto used = [&](int slot) { return n.boxes.planes[0][slot] <= n.boxes.planes[1][slot]; };
+        const auto leaf = [&](int slot) { return ChildRef::count(n.child[slot]) > 0; };
+        mixed += leaf(0) && !leaf(kBvhWidth - 1) && used(kBvhWidth - 1);
+        for (int slot = 1; slot < kBvhWidth; ++slot) {
+            if (!used(slot)) continue;
+            ASSERT_TRUE(used(slot - 1)) << "slot " << slot;
+            if (leaf(slot)) ASSERT_TRUE(leaf(slot - 1)) << "slot " << slot;
+            if (leaf(slot) == leaf(slot - 1)) EXPECT_LE(half_area(slot), half_area(slot - 1)) << "slot " << slot;
+        }
+    }
+    EXPECT_GT(mixed, 0);
+}
+
 // Long triangles across the scene, in every orientation, among small ones: spatial splits cut
 // them into several leaves, and the tree must still answer as testing every triangle does,
 // also for rays leaving a triangle (which no copy of it may stop) and shadow rays to one.
