@@ -35,7 +35,7 @@ constexpr int kSahDepth = 64;
 // against 16 (callgrind, Sponza's first 100k rays): 12% fewer instructions for the primary rays,
 // 4% for the diffuse ones; 48 gained no more. Alpha 1e-3 against Stich et al.'s 1e-5: the same
 // instructions within 0.1% on Sponza and the bunny, in a third of the build time; 1e-2 cost
-// Sponza 0.4-0.8% (bench/BENCHMARKS.md, ninth round).
+// Sponza 0.4-0.7% more (bench/BENCHMARKS.md, ninth round).
 constexpr int kSpatialBins = 32;
 constexpr float kOverlapShare = 1e-3f;
 
