@@ -3,8 +3,8 @@
 // of this on the same set, and callgrind counts just the loop (`--toggle-collect='*trace_pass*'`).
 //   ray_loop SHARED_DIR MESH KIND ENGINE QUERY PASSES [LIMIT [DUMP]]
 // MESH: a mesh of SHARED_DIR/scenes/meshes; KIND: primary | diffuse; ENGINE: glint | glint-split
-// (glint's tree with spatial splits) | medium | high (Embree's build qualities); QUERY: closest | any. Prints the fastest pass. LIMIT traces only the
-// first rays (0: all): a few thousand rays traced many times stay in the cache. DUMP writes each
+// (glint's tree with spatial splits) | medium | high (Embree's build qualities); QUERY: closest |
+// any. Prints the fastest pass. LIMIT traces only the first rays (0: all): a few thousand rays traced many times stay in the cache. DUMP writes each
 // answer (closest: t, primitive and glint's barycentrics as doubles; any: 0 or 1), to compare two
 // builds bit for bit with cmp. With RAY_LOOP_REPEAT=i in the environment, every ray traced is ray
 // i of the set: its branches become predictable, which tells the cost of mispredicted branches

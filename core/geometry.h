@@ -23,7 +23,7 @@ enum class BvhBuild { binned, spatial_splits };
 
 // The instruction set the triangle queries run in. Both paths compute 256-bit vectors and
 // answer bit for bit alike; AVX-512VL's EVEX encoding gives them 32 vector registers instead of
-// AVX2's 16, room for more of the box test's ray constants (GCC still leaves some on the stack;
+// AVX2's 16, room for more of the box test's ray constants (GCC still loads some from the stack;
 // bench/BENCHMARKS.md, fourth round).
 enum class Isa { avx2, avx512 };
 // The widest this processor and its operating system support, found once per process.

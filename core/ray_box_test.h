@@ -134,8 +134,9 @@ private:
 //   besides for a far one, which kFarPad covers.
 // - Maxima and minima compare the distances' bits as signed integers: that is the order of
 //   non-negative floats, and every negative float lies below every non-negative one. With
-//   tmin >= +0 among its operands, the entry's maximum is the float maximum. The exit's minimum is the float minimum when no operand is negative; otherwise it
-//   is negative, below the entry, and the box is rejected, as it is by the exact test.
+//   tmin >= +0 among its operands, the entry's maximum is the float maximum. The exit's minimum
+//   is the float minimum when no operand is negative; otherwise it is negative, below the
+//   entry, and the box is rejected, as it is by the exact test.
 // - No NaN arises: the reciprocals are finite and nonzero, o·inv is finite, and a plane at
 //   infinity (an unused slot) gives ±inf. (RayBoxTest absorbs its NaNs through VMAXPS's operand
 //   order; x86's default NaN, negative as an integer, would reject the box here.)

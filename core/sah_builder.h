@@ -1,5 +1,5 @@
 // The binary tree that binned SAH builds over primitive boxes (Wald, "On fast construction of
-// SAH-based bounding volume hierarchies", 2007). Bvh collapses it to four-wide nodes.
+// SAH-based bounding volume hierarchies", 2007). Bvh collapses it to eight-wide nodes.
 #pragma once
 
 #include <cstdint>

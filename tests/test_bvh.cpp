@@ -334,8 +334,12 @@ TEST(Bvh, ChildrenAreStoredLeavesFirstThenLargestFirst) {
         for (int slot = 1; slot < kBvhWidth; ++slot) {
             if (!used(slot)) continue;
             ASSERT_TRUE(used(slot - 1)) << "slot " << slot;
-            if (leaf(slot)) ASSERT_TRUE(leaf(slot - 1)) << "slot " << slot;
-            if (leaf(slot) == leaf(slot - 1)) EXPECT_LE(half_area(slot), half_area(slot - 1)) << "slot " << slot;
+            if (leaf(slot)) {
+                ASSERT_TRUE(leaf(slot - 1)) << "slot " << slot;
+            }
+            if (leaf(slot) == leaf(slot - 1)) {
+                EXPECT_LE(half_area(slot), half_area(slot - 1)) << "slot " << slot;
+            }
         }
     }
     EXPECT_GT(mixed, 0);
