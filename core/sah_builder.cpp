@@ -24,8 +24,11 @@ constexpr uint32_t kBinningBlock = 32;
 // Relative to one primitive test. Measured on the eight-wide tree (callgrind, Sponza's diffuse
 // rays; bytes from `glint trace-rays`): 1 gives the fewest instructions but half-empty nodes
 // (bunny 89.6 B/triangle, above Embree's 85); 2 costs 1.3% more instructions for 22% less
-// memory (69.9 B/triangle); 3 costs 10% more instructions.
+// memory (69.9 B/triangle); 3 costs 10% more instructions. The tree with spatial splits takes
+// 3: timed side by side (bench/BENCHMARKS.md, tenth round), its closest hits on the diffuse rays
+// ran 2-3% faster than with 2, on Sponza's primary rays 1% faster and on the bunny's 1% slower.
 constexpr float kTraversalCost = 2.0f;
+constexpr float kSplitTreeTraversalCost = 3.0f;
 // Below this depth SAH decides; deeper, splits fall back to the median so the tree's depth
 // (and so the traversal stack) stays bounded whatever the input.
 constexpr int kSahDepth = 64;
@@ -145,7 +148,8 @@ struct SpatialSplit {
 // splits there are none).
 class Builder {
 public:
-    Builder(std::vector<BuildPrim> prims, const SpatialSplits* splits) : prims_(std::move(prims)), splits_(splits) {}
+    Builder(std::vector<BuildPrim> prims, const SpatialSplits* splits)
+        : prims_(std::move(prims)), splits_(splits), traversal_cost_(splits ? kSplitTreeTraversalCost : kTraversalCost) {}
 
     BinaryTree run() {
         const auto n = static_cast<uint32_t>(prims_.size());
@@ -205,10 +209,10 @@ private:
         const float leaf_cost = float(count);
         // A split costs at least the traversal step: a node of no more primitives than that is a
         // leaf without a look at its bins.
-        if (leaf_cost <= kTraversalCost) return make_leaf(node, begin, count);
+        if (leaf_cost <= traversal_cost_) return make_leaf(node, begin, count);
         const Binning binning(centres, count);
         const Split split = depth < kSahDepth ? best_sah_split(begin, end, binning) : Split{};
-        const float split_cost = kTraversalCost + split.cost / bounds.half_area();
+        const float split_cost = traversal_cost_ + split.cost / bounds.half_area();
         if (count <= BinaryTree::kMaxLeafSize && leaf_cost <= split_cost) return make_leaf(node, begin, count);
         uint32_t mid = begin;
         if (split.axis >= 0) {
@@ -453,6 +457,7 @@ private:
 
     std::vector<BuildPrim> prims_;
     const SpatialSplits* splits_;
+    const float traversal_cost_;  // of one step down, relative to one primitive test
     float root_area_ = 0;
     std::vector<BuildPrim> left_, right_;  // a spatial split's children, before they are stored
     std::vector<BinaryNode>* nodes_ = nullptr;
