@@ -29,6 +29,9 @@ constexpr uint32_t kBinningBlock = 32;
 // ran 2-3% faster than with 2, on Sponza's primary rays 1% faster and on the bunny's 1% slower.
 constexpr float kTraversalCost = 2.0f;
 constexpr float kSplitTreeTraversalCost = 3.0f;
+// build() makes a node of no more primitives than the step cost a leaf before any other check.
+static_assert(kTraversalCost < BinaryTree::kMaxLeafSize + 1 && kSplitTreeTraversalCost < BinaryTree::kMaxLeafSize + 1,
+              "a leaf made for its step cost must fit kMaxLeafSize");
 // Below this depth SAH decides; deeper, splits fall back to the median so the tree's depth
 // (and so the traversal stack) stays bounded whatever the input.
 constexpr int kSahDepth = 64;
