@@ -1,9 +1,9 @@
 // An eight-wide bounding volume hierarchy over any primitives given by their boxes. Built as a
-// binary tree by binned SAH (sah_builder.h) and collapsed to eight children per node (bvh.cpp);
-// traversed iteratively, nearest child first, testing a node's eight child boxes at once in AVX
-// (ray_box_test.h). Primitives are addressed by their position in build order, so a caller can
-// store its primitives in that order and read a leaf's primitives as one contiguous run; the
-// primitive tests are template parameters, so the hot loop makes no virtual or indirect calls.
+// binary tree by binned SAH (sah_builder.h) and collapsed to nodes of up to eight children
+// (bvh_collapse.h); traversed iteratively, nearest child first, testing a node's eight child boxes
+// at once in AVX (ray_box_test.h). Primitives are addressed by their position in build order, so a
+// caller can store its primitives in that order and read a leaf's primitives as one contiguous run;
+// the primitive tests are template parameters, so the hot loop makes no virtual or indirect calls.
 #pragma once
 
 #include <array>

@@ -1,5 +1,6 @@
 // The binary tree that binned SAH builds over primitive boxes (Wald, "On fast construction of
-// SAH-based bounding volume hierarchies", 2007). Bvh collapses it to eight-wide nodes.
+// SAH-based bounding volume hierarchies", 2007). Bvh collapses it to eight-wide nodes
+// (bvh_collapse.h).
 #pragma once
 
 #include <cstdint>

@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 
+#include "bvh_collapse.h"
 #include "geometry.h"
 #include "rng.h"
 #include "sampling.h"
@@ -343,6 +344,43 @@ TEST(Bvh, ChildrenAreStoredLeavesFirstThenLargestFirst) {
         }
     }
     EXPECT_GT(mixed, 0);
+}
+
+// A binary tree where opening the largest child first wastes a node. The root (half area 100)
+// holds A (50) with two leaves and B (60), a chain of inner nodes B, B2 .. B7 (60 down to 54)
+// with one leaf each and two under B7: ten leaves. Largest first opens B .. B6 (all larger than
+// A) until the root is full, leaving A and B7 as nodes of two leaves: three nodes, 204 of area.
+// The least is two nodes: the root holds a1, a2, b1 .. b5 and B6, whose node holds b6 .. b8
+// (100 + 55).
+TEST(Bvh, CollapseMakesTheNodesOfLeastArea) {
+    const auto box = [](float area) { return FloatBox{{0, 0, 0}, {area, 1, 0}}; };  // half area: area
+    const auto inner = [&](float area, uint32_t left) { return BinaryNode{box(area), left, 0}; };
+    uint32_t position = 0;
+    const auto leaf = [&] { return BinaryNode{box(1), position++, 1}; };
+    std::vector<BinaryNode> binary = {inner(100, 1), inner(50, 3), inner(60, 5), leaf(), leaf()};
+    // b1 .. b6 at 5 + 2k, and B2 .. B7 at 6 + 2k with children from 7 + 2k on.
+    for (int k = 0; k < 6; ++k) {
+        binary.push_back(leaf());
+        binary.push_back(inner(59.0f - float(k), static_cast<uint32_t>(binary.size()) + 1));
+    }
+    binary.push_back(leaf());  // b7
+    binary.push_back(leaf());  // b8
+    ASSERT_EQ(binary.size(), 19u);
+
+    const std::vector<BvhNode> nodes = collapse_to_wide(binary);
+    ASSERT_EQ(nodes.size(), 2u);
+    const auto leaves = [](const BvhNode& n) {
+        return std::count_if(std::begin(n.child), std::end(n.child), [](uint32_t c) { return ChildRef::count(c) > 0; });
+    };
+    EXPECT_EQ(leaves(nodes[0]), 7);
+    EXPECT_EQ(leaves(nodes[1]), 3);
+    int inner_children = 0;  // B6 alone, of half area 55
+    for (int slot = 0; slot < kBvhWidth; ++slot)
+        if (ChildRef::count(nodes[0].child[slot]) == 0 && nodes[0].boxes.planes[0][slot] <= nodes[0].boxes.planes[1][slot]) {
+            ++inner_children;
+            EXPECT_EQ(nodes[0].boxes.planes[1][slot], 55.0f);
+        }
+    EXPECT_EQ(inner_children, 1);
 }
 
 // Long triangles across the scene, in every orientation, among small ones: spatial splits cut

@@ -1,0 +1,150 @@
+#include "bvh_collapse.h"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <memory>
+
+namespace glint {
+namespace {
+
+// The dynamic programme of collapse_to_wide(): a plan for every binary node, then the wide
+// nodes it picks, depth first.
+class Collapser {
+public:
+    explicit Collapser(const std::vector<BinaryNode>& binary)
+        : binary_(binary), plans_(std::make_unique_for_overwrite<Plan[]>(binary.size())) {}
+
+    std::vector<BvhNode> run() {
+        plan();
+        nodes_.reserve(binary_.size() / 2 + 1);
+        nodes_.emplace_back();
+        std::array<uint32_t, kBvhWidth> children{};
+        int size = 0;
+        if (binary_[0].is_leaf())
+            children[size++] = 0;
+        else
+            gather_content(0, children, size);
+        fill(0, children, size);
+        return std::move(nodes_);
+    }
+
+private:
+    // For a binary node and each number of slots i = 1..8, the least area of wide nodes that its
+    // subtree needs when it may fill at most i slots of its parent, and how: kOwnSlot puts the
+    // node in one slot (a leaf, or a wide node of its own), k > 0 gives its left child k slots
+    // and its right one the rest. Float areas, as the boxes are.
+    static constexpr uint8_t kOwnSlot = 0;
+    struct Plan {
+        std::array<float, kBvhWidth> cost;
+        std::array<uint8_t, kBvhWidth> left_slots;  // index i - 1
+        uint8_t content_left;  // as a wide node of its own: the slots of its left child
+    };
+
+    // Children come after their parents in the binary tree, so one backward pass sees every
+    // child before its parent. The choices are selects, not branches: which is cheaper is
+    // a coin toss, and mispredicting it made this pass cost more than the greedy collapse.
+    void plan() {
+        for (size_t n = binary_.size(); n-- > 0;) {
+            Plan& p = plans_[n];
+            const BinaryNode& node = binary_[n];
+            if (node.is_leaf()) {
+                p.cost.fill(0);
+                p.left_slots.fill(kOwnSlot);
+                continue;
+            }
+            const Plan &left = plans_[node.first], &right = plans_[node.first + 1];
+            // The least cost with the two children sharing at most i slots, from i = 2 on. Each
+            // choice starts from a valid one (k = 1), so that boxes reaching infinity, whose
+            // costs are infinite or NaN, still give a tree.
+            std::array<float, kBvhWidth> split{};
+            std::array<uint8_t, kBvhWidth> split_left{};
+            for (int i = 2; i <= kBvhWidth; ++i) {
+                float best = left.cost[0] + right.cost[i - 2];
+                uint8_t best_left = 1;
+                for (int k = 2; k < i; ++k) {
+                    const float c = left.cost[k - 1] + right.cost[i - k - 1];
+                    const bool better = c < best;
+                    best = better ? c : best;
+                    best_left = better ? static_cast<uint8_t>(k) : best_left;
+                }
+                split[i - 1] = best;
+                split_left[i - 1] = best_left;
+            }
+            p.content_left = split_left[kBvhWidth - 1];
+            p.cost[0] = static_cast<float>(node.half_area()) + split[kBvhWidth - 1];
+            p.left_slots[0] = kOwnSlot;
+            for (int i = 2; i <= kBvhWidth; ++i) {
+                const bool own = p.cost[i - 2] <= split[i - 1];
+                p.cost[i - 1] = own ? p.cost[i - 2] : split[i - 1];
+                p.left_slots[i - 1] = own ? p.left_slots[i - 2] : split_left[i - 1];
+            }
+        }
+    }
+
+    // The slots of binary node n's wide node.
+    void gather_content(uint32_t n, std::array<uint32_t, kBvhWidth>& children, int& size) const {
+        const uint8_t left = plans_[n].content_left;
+        gather(binary_[n].first, left, children, size);
+        gather(binary_[n].first + 1, kBvhWidth - left, children, size);
+    }
+
+    // Appends the slots that binary node n's subtree fills when it may take `slots` of them.
+    void gather(uint32_t n, int slots, std::array<uint32_t, kBvhWidth>& children, int& size) const {
+        const uint8_t left = plans_[n].left_slots[slots - 1];
+        if (left == kOwnSlot) {
+            children[size++] = n;
+            return;
+        }
+        gather(binary_[n].first, left, children, size);
+        gather(binary_[n].first + 1, slots - left, children, size);
+    }
+
+    void fill(uint32_t node, std::array<uint32_t, kBvhWidth>& children, int size) {
+        order_for_any_hit(children, size);
+        for (int slot = 0; slot < kBvhWidth; ++slot) set_slot(node, slot, slot < size ? &binary_[children[slot]] : nullptr);
+        for (int slot = 0; slot < size; ++slot) {
+            const BinaryNode& child = binary_[children[slot]];
+            if (child.is_leaf()) continue;
+            const auto index = static_cast<uint32_t>(nodes_.size());
+            nodes_.emplace_back();
+            nodes_[node].child[slot] = ChildRef::node(index);
+            std::array<uint32_t, kBvhWidth> grandchildren{};
+            int count = 0;
+            gather_content(children[slot], grandchildren, count);
+            fill(index, grandchildren, count);
+        }
+    }
+
+    // The any-hit traversal visits a node's children in slot order and stops at the first hit,
+    // so the likeliest to block a ray go first: leaves, which are tested at once, then the
+    // largest boxes. The closest-hit traversal orders by distance and does not care. (Sponza's
+    // diffuse any-hit queries 16% faster on the binned tree, 17% on the split one; the other
+    // sets within noise: bench/BENCHMARKS.md, ninth round.)
+    void order_for_any_hit(std::array<uint32_t, kBvhWidth>& children, int size) const {
+        std::sort(children.begin(), children.begin() + size, [&](uint32_t a, uint32_t b) {
+            const BinaryNode &x = binary_[a], &y = binary_[b];
+            return x.is_leaf() != y.is_leaf() ? x.is_leaf() : x.half_area() > y.half_area();
+        });
+    }
+
+    void set_slot(uint32_t node, int slot, const BinaryNode* child) {
+        BvhNode& n = nodes_[node];
+        constexpr float inf = std::numeric_limits<float>::infinity();
+        for (int a = 0; a < 3; ++a) {
+            n.boxes.planes[2 * a][slot] = child ? child->box.lo[a] : inf;
+            n.boxes.planes[2 * a + 1][slot] = child ? child->box.hi[a] : -inf;
+        }
+        n.child[slot] = child && child->is_leaf() ? ChildRef::leaf(child->first, child->count) : 0;
+    }
+
+    const std::vector<BinaryNode>& binary_;
+    std::unique_ptr<Plan[]> plans_;
+    std::vector<BvhNode> nodes_;
+};
+
+}  // namespace
+
+std::vector<BvhNode> collapse_to_wide(const std::vector<BinaryNode>& binary) { return Collapser(binary).run(); }
+
+}  // namespace glint
