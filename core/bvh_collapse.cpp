@@ -1,15 +1,15 @@
 #include "bvh_collapse.h"
 
-#include <algorithm>
 #include <array>
 #include <limits>
 #include <memory>
+#include <utility>
 
 namespace glint {
 namespace {
 
 // The dynamic programme of collapse_to_wide(): a plan for every binary node, then the wide
-// nodes it picks, depth first.
+// nodes and leaves it picks, depth first.
 class Collapser {
 public:
     explicit Collapser(const std::vector<BinaryNode>& binary)
@@ -30,55 +30,71 @@ public:
     }
 
 private:
-    // For a binary node and each number of slots i = 1..8, the least area of wide nodes that its
-    // subtree needs when it may fill at most i slots of its parent, and how: kOwnSlot puts the
-    // node in one slot (a leaf, or a wide node of its own), k > 0 gives its left child k slots
-    // and its right one the rest. Float areas, as the boxes are.
+    // For a binary node and each number of slots i = 1..8, the least cost of its subtree when it
+    // may fill at most i slots of its parent, and how: kOwnSlot puts the node in one slot (as a
+    // leaf, or as a wide node of its own), k > 0 gives its left child k slots and its right one
+    // the rest. Float areas, as the boxes are.
     static constexpr uint8_t kOwnSlot = 0;
     struct Plan {
         std::array<float, kBvhWidth> cost;
         std::array<uint8_t, kBvhWidth> left_slots;  // index i - 1
-        uint8_t content_left;  // as a wide node of its own: the slots of its left child
+        uint8_t content_left;                       // as a wide node: the slots of its left child
+        bool as_leaf;                               // in its own slot: a leaf, not a wide node
+        uint32_t first, prims;                      // its subtree's run of build-order positions
     };
 
     // Children come after their parents in the binary tree, so one backward pass sees every
-    // child before its parent. The choices are selects, not branches: which is cheaper is
-    // a coin toss, and mispredicting it made this pass cost more than the greedy collapse.
+    // child before its parent. The choices are selects, not branches: which is cheaper is a
+    // coin toss, and mispredicting it made this pass cost more than the greedy collapse.
     void plan() {
         for (size_t n = binary_.size(); n-- > 0;) {
             Plan& p = plans_[n];
             const BinaryNode& node = binary_[n];
+            const float leaf_cost = kLeafCost * static_cast<float>(node.half_area());
             if (node.is_leaf()) {
-                p.cost.fill(0);
+                p.cost.fill(leaf_cost);
                 p.left_slots.fill(kOwnSlot);
+                p.as_leaf = true;
+                p.first = node.first;
+                p.prims = node.count;
                 continue;
             }
             const Plan &left = plans_[node.first], &right = plans_[node.first + 1];
-            // The least cost with the two children sharing at most i slots, from i = 2 on. Each
-            // choice starts from a valid one (k = 1), so that boxes reaching infinity, whose
-            // costs are infinite or NaN, still give a tree.
+            p.first = left.first;
+            p.prims = left.prims + right.prims;
             std::array<float, kBvhWidth> split{};
             std::array<uint8_t, kBvhWidth> split_left{};
-            for (int i = 2; i <= kBvhWidth; ++i) {
-                float best = left.cost[0] + right.cost[i - 2];
-                uint8_t best_left = 1;
-                for (int k = 2; k < i; ++k) {
-                    const float c = left.cost[k - 1] + right.cost[i - k - 1];
-                    const bool better = c < best;
-                    best = better ? c : best;
-                    best_left = better ? static_cast<uint8_t>(k) : best_left;
-                }
-                split[i - 1] = best;
-                split_left[i - 1] = best_left;
-            }
+            share_slots(left, right, split, split_left);
             p.content_left = split_left[kBvhWidth - 1];
-            p.cost[0] = static_cast<float>(node.half_area()) + split[kBvhWidth - 1];
+            const float node_cost = static_cast<float>(node.half_area()) + split[kBvhWidth - 1];
+            // Any subtree of few enough primitives may be one leaf: they are one run.
+            p.as_leaf = p.prims <= BinaryTree::kMaxLeafSize && leaf_cost < node_cost;
+            p.cost[0] = p.as_leaf ? leaf_cost : node_cost;
             p.left_slots[0] = kOwnSlot;
             for (int i = 2; i <= kBvhWidth; ++i) {
                 const bool own = p.cost[i - 2] <= split[i - 1];
                 p.cost[i - 1] = own ? p.cost[i - 2] : split[i - 1];
                 p.left_slots[i - 1] = own ? p.left_slots[i - 2] : split_left[i - 1];
             }
+        }
+    }
+
+    // The least cost of two siblings sharing at most i slots, from i = 2 on, and the left one's
+    // share. Each choice starts from a valid one (k = 1), so that boxes reaching infinity, whose
+    // costs are infinite or NaN, still give a tree.
+    static void share_slots(const Plan& left, const Plan& right, std::array<float, kBvhWidth>& cost,
+                            std::array<uint8_t, kBvhWidth>& left_slots) {
+        for (int i = 2; i <= kBvhWidth; ++i) {
+            float best = left.cost[0] + right.cost[i - 2];
+            uint8_t best_left = 1;
+            for (int k = 2; k < i; ++k) {
+                const float c = left.cost[k - 1] + right.cost[i - k - 1];
+                const bool better = c < best;
+                best = better ? c : best;
+                best_left = better ? static_cast<uint8_t>(k) : best_left;
+            }
+            cost[i - 1] = best;
+            left_slots[i - 1] = best_left;
         }
     }
 
@@ -102,10 +118,9 @@ private:
 
     void fill(uint32_t node, std::array<uint32_t, kBvhWidth>& children, int size) {
         order_for_any_hit(children, size);
-        for (int slot = 0; slot < kBvhWidth; ++slot) set_slot(node, slot, slot < size ? &binary_[children[slot]] : nullptr);
+        for (int slot = 0; slot < kBvhWidth; ++slot) set_slot(node, slot, slot < size ? children[slot] : kNone);
         for (int slot = 0; slot < size; ++slot) {
-            const BinaryNode& child = binary_[children[slot]];
-            if (child.is_leaf()) continue;
+            if (plans_[children[slot]].as_leaf) continue;
             const auto index = static_cast<uint32_t>(nodes_.size());
             nodes_.emplace_back();
             nodes_[node].child[slot] = ChildRef::node(index);
@@ -122,20 +137,26 @@ private:
     // diffuse any-hit queries 16% faster on the binned tree, 17% on the split one; the other
     // sets within noise: bench/BENCHMARKS.md, ninth round.)
     void order_for_any_hit(std::array<uint32_t, kBvhWidth>& children, int size) const {
-        std::sort(children.begin(), children.begin() + size, [&](uint32_t a, uint32_t b) {
-            const BinaryNode &x = binary_[a], &y = binary_[b];
-            return x.is_leaf() != y.is_leaf() ? x.is_leaf() : x.half_area() > y.half_area();
-        });
+        const auto first = [&](uint32_t a, uint32_t b) {
+            const bool leaf_a = plans_[a].as_leaf, leaf_b = plans_[b].as_leaf;
+            return leaf_a != leaf_b ? leaf_a : binary_[a].half_area() > binary_[b].half_area();
+        };
+        // An insertion sort of at most eight: with std::sort GCC 12 warns of reads past the array.
+        for (int i = 1; i < size; ++i)
+            for (int j = i; j > 0 && first(children[j], children[j - 1]); --j) std::swap(children[j], children[j - 1]);
     }
 
-    void set_slot(uint32_t node, int slot, const BinaryNode* child) {
+    static constexpr uint32_t kNone = ~0u;
+    void set_slot(uint32_t node, int slot, uint32_t child) {
         BvhNode& n = nodes_[node];
         constexpr float inf = std::numeric_limits<float>::infinity();
+        const FloatBox* box = child != kNone ? &binary_[child].box : nullptr;
         for (int a = 0; a < 3; ++a) {
-            n.boxes.planes[2 * a][slot] = child ? child->box.lo[a] : inf;
-            n.boxes.planes[2 * a + 1][slot] = child ? child->box.hi[a] : -inf;
+            n.boxes.planes[2 * a][slot] = box ? box->lo[a] : inf;
+            n.boxes.planes[2 * a + 1][slot] = box ? box->hi[a] : -inf;
         }
-        n.child[slot] = child && child->is_leaf() ? ChildRef::leaf(child->first, child->count) : 0;
+        const Plan* p = child != kNone ? &plans_[child] : nullptr;
+        n.child[slot] = p && p->as_leaf ? ChildRef::leaf(p->first, p->prims) : 0;
     }
 
     const std::vector<BinaryNode>& binary_;

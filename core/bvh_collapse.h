@@ -1,11 +1,13 @@
-// The eight-wide nodes of a Bvh from the binary tree that SAH builds: which binary nodes become
-// wide nodes, so that the sum of their surface areas, the SAH's count of node visits, is least.
-// A dynamic programme over the binary tree (after Ylitie, Karras and Laine, "Efficient
-// incoherent ray traversal on GPUs through compressed wide BVHs", HPG 2017). The leaves are the
-// binary tree's, so they cost the same in every choice and drop out. Against the greedy collapse
-// that opened the largest child first, the trees of Sponza and the bunny take 20-30% fewer
-// nodes, and the tree with spatial splits traces diffuse rays 4-7% faster (bench/BENCHMARKS.md,
-// eleventh round).
+// The eight-wide nodes of a Bvh from the binary tree that SAH builds: which binary subtrees
+// become wide nodes and which become leaves, so that the SAH cost of the wide tree is least. A
+// dynamic programme over the binary tree (after Ylitie, Karras and Laine, "Efficient incoherent
+// ray traversal on GPUs through compressed wide BVHs", HPG 2017). A wide node costs its surface
+// area (the SAH's chance that a ray visits it), a leaf kLeafCost times its own. Any binary
+// subtree of at most BinaryTree::kMaxLeafSize primitives may become one leaf, as its primitives
+// are one run of build order; so the tree with spatial splits is built down to single
+// primitives and its leaves are chosen here. Against the greedy collapse that opened the largest
+// child first, both trees take 20-30% fewer nodes, and the diffuse rays of Sponza and the bunny
+// run 5-13% faster (bench/BENCHMARKS.md, eleventh round).
 #pragma once
 
 #include <vector>
@@ -13,6 +15,10 @@
 #include "bvh.h"
 
 namespace glint {
+
+// A leaf's four-wide run test against a node's eight-wide box test: the leaves' share of the
+// cost. 1.5 against 1 and 2, timed (bench/BENCHMARKS.md, eleventh round).
+inline constexpr float kLeafCost = 1.5f;
 
 // The root's children fill the first node; `binary` is not empty.
 std::vector<BvhNode> collapse_to_wide(const std::vector<BinaryNode>& binary);

@@ -25,10 +25,11 @@ constexpr uint32_t kBinningBlock = 32;
 // rays; bytes from `glint trace-rays`): 1 gives the fewest instructions but half-empty nodes
 // (bunny 89.6 B/triangle, above Embree's 85); 2 costs 1.3% more instructions for 22% less
 // memory (69.9 B/triangle); 3 costs 10% more instructions. The tree with spatial splits takes
-// 3: timed side by side (bench/BENCHMARKS.md, tenth round), its closest hits on the diffuse rays
-// ran 2-3% faster than with 2, on Sponza's primary rays 1% faster and on the bunny's 1% slower.
+// 1, which splits nearly every node down to one triangle, and lets the collapse choose its
+// leaves (bvh_collapse.h): Sponza's diffuse rays 6% faster than with 3 (bench/BENCHMARKS.md,
+// eleventh round). The binned tree keeps 2: with 1 its build took longer than Embree MEDIUM's.
 constexpr float kTraversalCost = 2.0f;
-constexpr float kSplitTreeTraversalCost = 3.0f;
+constexpr float kSplitTreeTraversalCost = 1.0f;
 // build() makes a node of no more primitives than the step cost a leaf before any other check.
 static_assert(kTraversalCost < BinaryTree::kMaxLeafSize + 1 && kSplitTreeTraversalCost < BinaryTree::kMaxLeafSize + 1,
               "a leaf made for its step cost must fit kMaxLeafSize");

@@ -383,6 +383,24 @@ TEST(Bvh, CollapseMakesTheNodesOfLeastArea) {
     EXPECT_EQ(inner_children, 1);
 }
 
+// Binary leaves become one leaf where that costs less. Under the root (half area 10), C (4)
+// holds two leaves of 3 each, which overlap: one leaf of C costs 1.5 x 4 against 1.5 x 6 for the
+// two. D (4) holds two leaves of 1: kept apart they cost 1.5 x 2, against 1.5 x 4 merged. The
+// root then holds three slots: C as a leaf of two primitives, and D's two leaves.
+TEST(Bvh, CollapseMergesLeavesWhereThatCostsLess) {
+    const auto box = [](float area) { return FloatBox{{0, 0, 0}, {area, 1, 0}}; };
+    const std::vector<BinaryNode> binary = {{box(10), 1, 0}, {box(4), 3, 0}, {box(4), 5, 0}, {box(3), 0, 1},
+                                            {box(3), 1, 1},  {box(1), 2, 1}, {box(1), 3, 1}};
+    const std::vector<BvhNode> nodes = collapse_to_wide(binary);
+    ASSERT_EQ(nodes.size(), 1u);
+    const BvhNode& root = nodes[0];
+    // Leaves first, each group by falling area: C's merged leaf, then D's two.
+    EXPECT_EQ(root.child[0], ChildRef::leaf(0, 2));
+    EXPECT_EQ(root.child[1], ChildRef::leaf(2, 1));
+    EXPECT_EQ(root.child[2], ChildRef::leaf(3, 1));
+    for (int slot = 3; slot < kBvhWidth; ++slot) EXPECT_GT(root.boxes.planes[0][slot], root.boxes.planes[1][slot]);
+}
+
 // Long triangles across the scene, in every orientation, among small ones: spatial splits cut
 // them into several leaves, and the tree must still answer as testing every triangle does,
 // also for rays leaving a triangle (which no copy of it may stop) and shadow rays to one.
