@@ -1,14 +1,16 @@
 // One ray set through one engine in a plain loop on the calling thread, timed by the thread's CPU
-// time: the step-by-step measurements of the BVH work (bench/BENCHMARKS.md) alternate two builds
-// of this on the same set, and callgrind counts just the loop (`--toggle-collect='*trace_pass*'`).
+// time: the step-by-step measurements of the BVH work (bench/BENCHMARKS.md) alternate two builds of
+// this on the same set, and callgrind counts just the loop (`--toggle-collect='*trace_pass*'`).
 //   ray_loop SHARED_DIR MESH KIND ENGINE QUERY PASSES [LIMIT [DUMP]]
 // MESH: a mesh of SHARED_DIR/scenes/meshes; KIND: primary | diffuse; ENGINE: glint | glint-split
 // (glint's tree with spatial splits) | medium | high (Embree's build qualities); QUERY: closest |
-// any. Prints the fastest pass. LIMIT traces only the first rays (0: all): a few thousand rays traced many times stay in the cache. DUMP writes each
-// answer (closest: t, primitive and glint's barycentrics as doubles; any: 0 or 1), to compare two
-// builds bit for bit with cmp. With RAY_LOOP_REPEAT=i in the environment, every ray traced is ray
-// i of the set: its branches become predictable, which tells the cost of mispredicted branches
-// from the rest.
+// any. Prints the fastest pass. LIMIT traces only the first rays (0: all): a few thousand rays
+// traced many times stay in the cache. DUMP writes each answer (closest: t, primitive and glint's
+// barycentrics as doubles; any: 0 or 1), to compare two builds bit for bit with cmp. With
+// RAY_LOOP_REPEAT=i in the environment, every ray traced is ray i of the set: its branches become
+// predictable, which tells the cost of mispredicted branches from the rest. With RAY_LOOP_STATS=1,
+// the tree's shape is printed first: glint's by print_tree_stats(), Embree's by its own statistics
+// (device option verbose=2).
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -56,9 +58,44 @@ double fastest_pass(size_t n, int passes, std::vector<Answer>& answers, Trace&& 
     return best;
 }
 
+// The SAH's expected visits of a ray that meets the root's box (each box's surface area over the
+// root's; leaves count as leaves, not by their triangles), Embree's measure in its statistics, and
+// the counts behind them.
+void print_tree_stats(const Bvh& bvh) {
+    const auto half_area = [](const BvhNode& n, int slot) {
+        const auto extent = [&](int a) { return double(n.boxes.planes[2 * a + 1][slot]) - n.boxes.planes[2 * a][slot]; };
+        return extent(0) * extent(1) + extent(1) * extent(2) + extent(2) * extent(0);
+    };
+    const auto used = [](const BvhNode& n, int slot) { return n.boxes.planes[0][slot] <= n.boxes.planes[1][slot]; };
+    Bounds3 root;
+    const BvhNode& top = bvh.nodes().front();
+    for (int slot = 0; slot < kBvhWidth; ++slot)
+        if (used(top, slot))
+            for (int a = 0; a < 3; ++a) {
+                root.lo[a] = std::min(root.lo[a], double(top.boxes.planes[2 * a][slot]));
+                root.hi[a] = std::max(root.hi[a], double(top.boxes.planes[2 * a + 1][slot]));
+            }
+    double node_visits = 1, leaf_visits = 0;
+    size_t children = 0, leaves = 0, references = 0;
+    for (const BvhNode& n : bvh.nodes())
+        for (int slot = 0; slot < kBvhWidth; ++slot) {
+            if (!used(n, slot)) continue;
+            ++children;
+            const uint32_t count = ChildRef::count(n.child[slot]);
+            (count > 0 ? leaf_visits : node_visits) += half_area(n, slot) / root.half_area();
+            leaves += count > 0;
+            references += count;
+        }
+    const size_t nodes = bvh.nodes().size();
+    std::printf("tree: %zu nodes of %.2f children, %zu leaves of %.2f references; SAH visits: %.2f nodes, %.2f leaves\n",
+                nodes, double(children) / double(nodes), leaves, double(references) / double(leaves), node_visits,
+                leaf_visits);
+}
+
 double run_glint(const ObjMesh& mesh, const std::vector<RayRecord>& rays, BvhBuild build, bool closest, int passes,
                  std::vector<Answer>& answers) {
     const Geometry geometry({}, to_triangles(mesh), Accelerator::bvh, build);
+    if (std::getenv("RAY_LOOP_STATS")) print_tree_stats(geometry.triangle_bvh());
     return fastest_pass(rays.size(), passes, answers, [&](size_t i, Answer& a) {
         const RayRecord& r = rays[i];
         const Ray ray{{r.o[0], r.o[1], r.o[2]}, {r.d[0], r.d[1], r.d[2]}, r.tmin, r.tmax};
@@ -74,7 +111,7 @@ double run_glint(const ObjMesh& mesh, const std::vector<RayRecord>& rays, BvhBui
 
 double run_embree(const ObjMesh& mesh, const std::vector<RayRecord>& rays, RTCBuildQuality quality, bool closest,
                   int passes, std::vector<Answer>& answers) {
-    RTCDevice device = rtcNewDevice("threads=1");
+    RTCDevice device = rtcNewDevice(std::getenv("RAY_LOOP_STATS") ? "threads=1,verbose=2" : "threads=1");
     RTCScene scene = new_embree_scene(device, mesh, quality);
     rtcCommitScene(scene);
     const double best = fastest_pass(rays.size(), passes, answers, [&](size_t i, Answer& a) {
