@@ -137,13 +137,20 @@ private:
     // diffuse any-hit queries 16% faster on the binned tree, 17% on the split one; the other
     // sets within noise: bench/BENCHMARKS.md, ninth round.)
     void order_for_any_hit(std::array<uint32_t, kBvhWidth>& children, int size) const {
-        const auto first = [&](uint32_t a, uint32_t b) {
-            const bool leaf_a = plans_[a].as_leaf, leaf_b = plans_[b].as_leaf;
-            return leaf_a != leaf_b ? leaf_a : binary_[a].half_area() > binary_[b].half_area();
+        // The keys computed once: the comparisons of std::sort recomputed the areas (and GCC 12
+        // warns that its insertion sort might read past an array of eight).
+        struct Key {
+            bool leaf;
+            float area;
+            uint32_t child;
+            bool goes_before(const Key& k) const { return leaf != k.leaf ? leaf : area > k.area; }
         };
-        // An insertion sort of at most eight: with std::sort GCC 12 warns of reads past the array.
+        std::array<Key, kBvhWidth> keys;
+        for (int i = 0; i < size; ++i)
+            keys[i] = {plans_[children[i]].as_leaf, static_cast<float>(binary_[children[i]].half_area()), children[i]};
         for (int i = 1; i < size; ++i)
-            for (int j = i; j > 0 && first(children[j], children[j - 1]); --j) std::swap(children[j], children[j - 1]);
+            for (int j = i; j > 0 && keys[j].goes_before(keys[j - 1]); --j) std::swap(keys[j], keys[j - 1]);
+        for (int i = 0; i < size; ++i) children[i] = keys[i].child;
     }
 
     static constexpr uint32_t kNone = ~0u;
