@@ -22,12 +22,13 @@ constexpr uint32_t kManyPrimitives = 1024;
 // Primitives binned per block (see best_sah_split).
 constexpr uint32_t kBinningBlock = 32;
 // Relative to one primitive test. Measured on the eight-wide tree (callgrind, Sponza's diffuse
-// rays; bytes from `glint trace-rays`): 1 gives the fewest instructions but half-empty nodes
-// (bunny 89.6 B/triangle, above Embree's 85); 2 costs 1.3% more instructions for 22% less
-// memory (69.9 B/triangle); 3 costs 10% more instructions. The tree with spatial splits takes
-// 1, which splits nearly every node down to one triangle, and lets the collapse choose its
-// leaves (bvh_collapse.h): Sponza's diffuse rays 6% faster than with 3 (bench/BENCHMARKS.md,
-// eleventh round). The binned tree keeps 2: with 1 its build took longer than Embree MEDIUM's.
+// rays; bytes from `glint trace-rays`): 1 gives the fewest instructions but half-empty nodes (bunny
+// 89.6 B/triangle, above Embree's 85); 2 costs 1.3% more instructions for 22% less memory (69.9
+// B/triangle); 3 costs 10% more instructions. The tree with spatial splits takes 1, which splits
+// nearly every node down to one triangle, and lets the collapse choose its leaves (bvh_collapse.h):
+// Sponza's diffuse rays 1-6% faster than with 3 in two alternated runs (bench/BENCHMARKS.md,
+// eleventh round). The binned tree keeps 2: with 1 its build took 1.01-1.06x Embree MEDIUM's time
+// (one run, on a busy machine).
 constexpr float kTraversalCost = 2.0f;
 constexpr float kSplitTreeTraversalCost = 1.0f;
 // build() makes a node of no more primitives than the step cost a leaf before any other check.
