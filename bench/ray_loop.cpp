@@ -62,15 +62,10 @@ double fastest_pass(size_t n, int passes, std::vector<Answer>& answers, Trace&& 
 // root's; leaves count as leaves, not by their triangles), Embree's measure in its statistics, and
 // the counts behind them.
 void print_tree_stats(const Bvh& bvh) {
-    const auto half_area = [](const BvhNode& n, int slot) {
-        const auto extent = [&](int a) { return double(n.boxes.planes[2 * a + 1][slot]) - n.boxes.planes[2 * a][slot]; };
-        return extent(0) * extent(1) + extent(1) * extent(2) + extent(2) * extent(0);
-    };
-    const auto used = [](const BvhNode& n, int slot) { return n.boxes.planes[0][slot] <= n.boxes.planes[1][slot]; };
     Bounds3 root;
     const BvhNode& top = bvh.nodes().front();
     for (int slot = 0; slot < kBvhWidth; ++slot)
-        if (used(top, slot))
+        if (top.boxes.used(slot))
             for (int a = 0; a < 3; ++a) {
                 root.lo[a] = std::min(root.lo[a], double(top.boxes.planes[2 * a][slot]));
                 root.hi[a] = std::max(root.hi[a], double(top.boxes.planes[2 * a + 1][slot]));
@@ -79,10 +74,10 @@ void print_tree_stats(const Bvh& bvh) {
     size_t children = 0, leaves = 0, references = 0;
     for (const BvhNode& n : bvh.nodes())
         for (int slot = 0; slot < kBvhWidth; ++slot) {
-            if (!used(n, slot)) continue;
+            if (!n.boxes.used(slot)) continue;
             ++children;
             const uint32_t count = ChildRef::count(n.child[slot]);
-            (count > 0 ? leaf_visits : node_visits) += half_area(n, slot) / root.half_area();
+            (count > 0 ? leaf_visits : node_visits) += n.boxes.half_area(slot) / root.half_area();
             leaves += count > 0;
             references += count;
         }

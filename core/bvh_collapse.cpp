@@ -50,7 +50,8 @@ private:
         for (size_t n = binary_.size(); n-- > 0;) {
             Plan& p = plans_[n];
             const BinaryNode& node = binary_[n];
-            const float leaf_cost = kLeafCost * static_cast<float>(node.half_area());
+            const auto area = static_cast<float>(node.half_area());
+            const float leaf_cost = kLeafCost * area;
             if (node.is_leaf()) {
                 p.cost.fill(leaf_cost);
                 p.left_slots.fill(kOwnSlot);
@@ -66,7 +67,7 @@ private:
             std::array<uint8_t, kBvhWidth> split_left{};
             share_slots(left, right, split, split_left);
             p.content_left = split_left[kBvhWidth - 1];
-            const float node_cost = static_cast<float>(node.half_area()) + split[kBvhWidth - 1];
+            const float node_cost = area + split[kBvhWidth - 1];
             // Any subtree of few enough primitives may be one leaf: they are one run.
             p.as_leaf = p.prims <= BinaryTree::kMaxLeafSize && leaf_cost < node_cost;
             p.cost[0] = p.as_leaf ? leaf_cost : node_cost;

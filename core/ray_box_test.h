@@ -43,6 +43,13 @@ inline constexpr float kFarPad = 1 + 0x1p-20f;
 // hi = -inf, which no ray can enter.
 struct alignas(32) WideBox {
     float planes[6][kBvhWidth];
+
+    bool used(int slot) const { return planes[0][slot] <= planes[1][slot]; }
+    // A used slot's box: half its surface area, in double.
+    double half_area(int slot) const {
+        const auto extent = [&](int a) { return double(planes[2 * a + 1][slot]) - planes[2 * a][slot]; };
+        return extent(0) * extent(1) + extent(1) * extent(2) + extent(2) * extent(0);
+    }
 };
 
 // Where an axis' near and far planes lie, in bytes from the first plane, for each octant of the

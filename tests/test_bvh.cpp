@@ -289,7 +289,7 @@ TEST(Bvh, TreeIsWellFormed) {
         std::vector<int> seen(bvh->tree_size(), 0), parents(bvh->nodes().size(), 0);
         for (const BvhNode& n : bvh->nodes())
             for (int slot = 0; slot < kBvhWidth; ++slot) {
-                const bool used = n.boxes.planes[0][slot] <= n.boxes.planes[1][slot];
+                const bool used = n.boxes.used(slot);
                 if (!used) continue;
                 const uint32_t ref = n.child[slot], count = ChildRef::count(ref);
                 if (count > 0) {
@@ -325,11 +325,8 @@ TEST(Bvh, ChildrenAreStoredLeavesFirstThenLargestFirst) {
     const Geometry g(s.spheres, s.triangles);
     int mixed = 0;  // nodes holding both leaves and inner nodes
     for (const BvhNode& n : g.triangle_bvh().nodes()) {
-        const auto half_area = [&](int slot) {
-            const auto extent = [&](int a) { return double(n.boxes.planes[2 * a + 1][slot]) - n.boxes.planes[2 * a][slot]; };
-            return extent(0) * extent(1) + extent(1) * extent(2) + extent(2) * extent(0);
-        };
-        const auto used = [&](int slot) { return n.boxes.planes[0][slot] <= n.boxes.planes[1][slot]; };
+        const auto half_area = [&](int slot) { return n.boxes.half_area(slot); };
+        const auto used = [&](int slot) { return n.boxes.used(slot); };
         const auto leaf = [&](int slot) { return ChildRef::count(n.child[slot]) > 0; };
         mixed += leaf(0) && !leaf(kBvhWidth - 1) && used(kBvhWidth - 1);
         for (int slot = 1; slot < kBvhWidth; ++slot) {
@@ -376,7 +373,7 @@ TEST(Bvh, CollapseMakesTheNodesOfLeastArea) {
     EXPECT_EQ(leaves(nodes[1]), 3);
     int inner_children = 0;  // B6 alone, of half area 55
     for (int slot = 0; slot < kBvhWidth; ++slot)
-        if (ChildRef::count(nodes[0].child[slot]) == 0 && nodes[0].boxes.planes[0][slot] <= nodes[0].boxes.planes[1][slot]) {
+        if (ChildRef::count(nodes[0].child[slot]) == 0 && nodes[0].boxes.used(slot)) {
             ++inner_children;
             EXPECT_EQ(nodes[0].boxes.planes[1][slot], 55.0f);
         }
@@ -398,7 +395,7 @@ TEST(Bvh, CollapseMergesLeavesWhereThatCostsLess) {
     EXPECT_EQ(root.child[0], ChildRef::leaf(0, 2));
     EXPECT_EQ(root.child[1], ChildRef::leaf(2, 1));
     EXPECT_EQ(root.child[2], ChildRef::leaf(3, 1));
-    for (int slot = 3; slot < kBvhWidth; ++slot) EXPECT_GT(root.boxes.planes[0][slot], root.boxes.planes[1][slot]);
+    for (int slot = 3; slot < kBvhWidth; ++slot) EXPECT_FALSE(root.boxes.used(slot));
 }
 
 // Long triangles across the scene, in every orientation, among small ones: spatial splits cut
