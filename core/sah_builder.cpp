@@ -164,31 +164,39 @@ public:
         tree.nodes.push_back({});
         nodes_ = &tree.nodes;
         prims_.resize(capacity);
-        root_area_ = extent(0, n).first.half_area();
-        build(0, 0, n, capacity, 0);
+        const Extent root = extent_of(0, n);
+        root_area_ = root.bounds.half_area();
+        build(0, {0, n, capacity, root}, 0);
         tree.order = compact(tree.nodes);
         return tree;
     }
 
 private:
-    // The box around the primitives and the box around their doubled centres. Two of each, for
-    // even and odd positions: one chain of minima and maxima would make each primitive wait for
-    // the previous one's.
-    std::pair<SseBox, SseBox> extent(uint32_t begin, uint32_t end) const {
-        std::array<SseBox, 2> bounds, centres;
-        const auto add = [&](size_t chain, uint32_t i) {
-            bounds[chain].extend(prims_[i].box);
-            centres[chain].extend(prims_[i].twice_centre());
-        };
+    // The box around some primitives and the box around their doubled centres.
+    struct Extent {
+        SseBox bounds, centres;
+        void add(const BuildPrim& p) {
+            bounds.extend(p.box);
+            centres.extend(p.twice_centre());
+        }
+        void extend(const Extent& e) {
+            bounds.extend(e.bounds);
+            centres.extend(e.centres);
+        }
+    };
+
+    // The extent of prims_[begin, end), in two chains, for even and odd positions: one chain of
+    // minima and maxima would make each primitive wait for the previous one's.
+    Extent extent_of(uint32_t begin, uint32_t end) const {
+        std::array<Extent, 2> chains;
         uint32_t i = begin;
         for (; i + 1 < end; i += 2) {
-            add(0, i);
-            add(1, i + 1);
+            chains[0].add(prims_[i]);
+            chains[1].add(prims_[i + 1]);
         }
-        if (i < end) add(0, i);
-        bounds[0].extend(bounds[1]);
-        centres[0].extend(centres[1]);
-        return {bounds[0], centres[0]};
+        if (i < end) chains[0].add(prims_[i]);
+        chains[0].extend(chains[1]);
+        return chains[0];
     }
 
     // The references of the leaves, in order, without the free slots left between them.
@@ -207,53 +215,71 @@ private:
         return order;
     }
 
-    void build(uint32_t node, uint32_t begin, uint32_t end, uint32_t capacity_end, int depth) {
-        const auto [bounds, centres] = extent(begin, end);
-        (*nodes_)[node].box = bounds.to_float_box();
+    // A node to build: its range of prims_, the free slots after it up to capacity_end, and the
+    // extent of its primitives, which its parent found on the way.
+    struct Child {
+        uint32_t begin, end, capacity_end;
+        Extent extent;
+    };
+
+    void build(uint32_t node, const Child& child, int depth) {
+        const auto [begin, end, capacity_end, extent] = child;
+        (*nodes_)[node].box = extent.bounds.to_float_box();
         const uint32_t count = end - begin;
         const float leaf_cost = float(count);
         // A split costs at least the traversal step: a node of no more primitives than that is a
         // leaf without a look at its bins.
         if (leaf_cost <= traversal_cost_) return make_leaf(node, begin, count);
-        const Binning binning(centres, count);
+        const Binning binning(extent.centres, count);
         const Split split = depth < kSahDepth ? best_sah_split(begin, end, binning) : Split{};
-        const float split_cost = traversal_cost_ + split.cost / bounds.half_area();
+        const float split_cost = traversal_cost_ + split.cost / extent.bounds.half_area();
         if (count <= BinaryTree::kMaxLeafSize && leaf_cost <= split_cost) return make_leaf(node, begin, count);
-        uint32_t mid = begin;
-        if (split.axis >= 0) {
-            const auto first_right =
-                std::partition(prims_.begin() + begin, prims_.begin() + end,
-                               [&](const BuildPrim& p) { return p.bin[split.axis] < split.bin; });
-            mid = static_cast<uint32_t>(first_right - prims_.begin());
+        Extent left, right;
+        uint32_t mid = split.axis >= 0 ? partition(begin, end, split, left, right) : begin;
+        if (mid == begin || mid == end) {
+            mid = median_split(begin, end, extent.centres);
+            left = extent_of(begin, mid);
+            right = extent_of(mid, end);
         }
-        if (mid == begin || mid == end) mid = median_split(begin, end, centres);
-        if (capacity_end > end && depth < kSahDepth && children_overlap(begin, mid, end) &&
-            split_spatially(node, begin, end, capacity_end, depth, split.cost, bounds))
+        if (capacity_end > end && depth < kSahDepth && overlap_enough(left.bounds, right.bounds) &&
+            split_spatially(node, child, depth, split.cost))
             return;
 
         // The right-hand references move up by the left child's share of the free slots.
         const auto to_left = static_cast<uint32_t>((capacity_end - end) * uint64_t{mid - begin} / count);
         if (to_left > 0) std::move_backward(prims_.begin() + mid, prims_.begin() + end, prims_.begin() + end + to_left);
-        split_node(node, {begin, mid, mid + to_left}, {mid + to_left, end + to_left, capacity_end}, depth);
+        split_node(node, {begin, mid, mid + to_left, left}, {mid + to_left, end + to_left, capacity_end, right}, depth);
     }
 
-    struct Range {
-        uint32_t begin, end, capacity_end;
-    };
-    void split_node(uint32_t node, Range left, Range right, int depth) {
+    // Moves the primitives left of the split to the front (in std::partition's order), and
+    // gathers each side's extent on the way, so that the children need no pass of their own over
+    // their primitives (the binned build about 4% faster on Sponza). Returns where the right
+    // side begins.
+    uint32_t partition(uint32_t begin, uint32_t end, const Split& split, Extent& left, Extent& right) {
+        const auto on_left = [&](const BuildPrim& p) { return p.bin[split.axis] < split.bin; };
+        uint32_t lo = begin, hi = end;
+        for (;;) {
+            for (; lo < hi && on_left(prims_[lo]); ++lo) left.add(prims_[lo]);
+            for (; lo < hi && !on_left(prims_[hi - 1]); --hi) right.add(prims_[hi - 1]);
+            if (lo == hi) return lo;
+            std::swap(prims_[lo], prims_[--hi]);  // prims_[lo] belonged right and prims_[hi] left
+            left.add(prims_[lo++]);
+            right.add(prims_[hi]);
+        }
+    }
+
+    void split_node(uint32_t node, const Child& left, const Child& right, int depth) {
         const auto first = static_cast<uint32_t>(nodes_->size());
         (*nodes_)[node].first = first;
         (*nodes_)[node].count = 0;
         nodes_->push_back({});
         nodes_->push_back({});
-        build(first, left.begin, left.end, left.capacity_end, depth + 1);
-        build(first + 1, right.begin, right.end, right.capacity_end, depth + 1);
+        build(first, left, depth + 1);
+        build(first + 1, right, depth + 1);
     }
 
-    // Whether the children of the object split at `mid` overlap enough for spatial splits.
-    bool children_overlap(uint32_t begin, uint32_t mid, uint32_t end) const {
-        SseBox overlap = extent(begin, mid).first;
-        const SseBox right = extent(mid, end).first;
+    // Whether the boxes of an object split's children overlap enough for spatial splits.
+    bool overlap_enough(SseBox overlap, const SseBox& right) const {
         overlap.lo = _mm_max_ps(overlap.lo, right.lo);
         overlap.hi = _mm_min_ps(overlap.hi, right.hi);
         return _mm_movemask_ps(_mm_cmpgt_ps(overlap.lo, overlap.hi)) == 0 && overlap.half_area() > kOverlapShare * root_area_;
@@ -261,9 +287,9 @@ private:
 
     // Splits the node by the best plane cutting its triangles if that costs less than
     // `object_cost` and the free slots hold the references it adds; returns whether it did.
-    bool split_spatially(uint32_t node, uint32_t begin, uint32_t end, uint32_t capacity_end, int depth,
-                         float object_cost, const SseBox& bounds) {
-        const SpatialSplit spatial = best_spatial_split(begin, end, bounds);
+    bool split_spatially(uint32_t node, const Child& child, int depth, float object_cost) {
+        const auto [begin, end, capacity_end, extent] = child;
+        const SpatialSplit spatial = best_spatial_split(begin, end, extent.bounds);
         if (!(spatial.cost < object_cost)) return false;
         left_.clear();
         right_.clear();
@@ -287,7 +313,8 @@ private:
         const uint32_t right_begin = begin + n_left + to_left;
         std::copy(left_.begin(), left_.end(), prims_.begin() + begin);
         std::copy(right_.begin(), right_.end(), prims_.begin() + right_begin);
-        split_node(node, {begin, begin + n_left, right_begin}, {right_begin, right_begin + n_right, capacity_end}, depth);
+        split_node(node, {begin, begin + n_left, right_begin, extent_of(begin, begin + n_left)},
+                   {right_begin, right_begin + n_right, capacity_end, extent_of(right_begin, right_begin + n_right)}, depth);
         return true;
     }
 
@@ -475,9 +502,12 @@ BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const SpatialSpl
     prims.reserve(prim_bounds.size());
     for (uint32_t i = 0; i < prim_bounds.size(); ++i) {
         if (prim_bounds[i].empty()) continue;
-        const FloatBox f = FloatBox::enclosing(prim_bounds[i]);
-        const SseBox box{_mm_setr_ps(f.lo[0], f.lo[1], f.lo[2], 0), _mm_setr_ps(f.hi[0], f.hi[1], f.hi[2], 0)};
-        prims.push_back({box, i, {}});
+        // Field by field: built whole, the primitive went through the stack, where loading its
+        // index and bins as one 16-byte word waited for their narrower stores (perf: a quarter
+        // of this function's time).
+        BuildPrim& p = prims.emplace_back();
+        p.box = SseBox::enclosing(prim_bounds[i]);
+        p.index = i;
     }
     if (prims.empty()) return {};
     return Builder(std::move(prims), splits).run();
