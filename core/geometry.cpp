@@ -71,7 +71,7 @@ void Geometry::store_runs(const std::vector<PackedTriangle>& packed, const std::
     });
     triangle_runs_.assign(9 * positions + triangle_run::kPadding, 0.0f);
     // In build order, the triangles' reads jump about: each is prefetched a few positions ahead
-    // (the whole binned build about 4% faster).
+    // (the bunny's whole binned build about 4% faster).
     constexpr uint32_t kAhead = 16;
     for (uint32_t pos = 0; pos < positions; ++pos) {
         if (!triangle_at.empty() && pos + kAhead < positions) __builtin_prefetch(&packed[triangle_at[pos + kAhead]]);
