@@ -174,7 +174,7 @@ bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
 }
 
 bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
-    if (!is_finite(ray.o) || !is_finite(ray.d)) return false;  // would visit every node for nothing
+    if (!has_finite_origin_and_direction(ray)) return false;  // would visit every node for nothing
     Ray r = ray;
     // A mesh scene pays nothing for spheres, not even the call, and a sphere scene nothing for
     // triangles (not even the ray's shear).
@@ -210,7 +210,7 @@ bool Geometry::sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) con
 }
 
 bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
-    if (!is_finite(ray.o) || !is_finite(ray.d)) return false;
+    if (!has_finite_origin_and_direction(ray)) return false;
     return (!spheres_.empty() && sphere_blocks(ray, self, target)) ||
            (!run_slot_.empty() && (isa_ == Isa::avx512 ? triangle_blocks_avx512(ray, self, target)
                                                         : triangle_blocks_avx2(ray, self, target)));

@@ -3,6 +3,7 @@
 
 #include <immintrin.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -34,11 +35,20 @@ inline void edge_functions(const T a[2], const T b[2], const T c[2], T& u, T& v,
 
 // The ray's share of the watertight test, the same for every triangle and so computed once per
 // ray: the axis that becomes z, the shear that turns the direction onto it, and the origin in
-// the permuted axes.
+// the permuted axes. The shear and the origin are kept as four-lane rows (lane 3 unused), which
+// RunTest broadcasts from: a ray's set-up is a sizeable share of a short traversal's
+// instructions (bench/BENCHMARKS.md, fourteenth round).
 struct RayShear {
     int kx, ky, kz;
-    double sx, sy, sz;
-    double ox, oy, oz;
+    alignas(32) double shear[4];   // sx, sy, sz: d[kx] / d[kz], d[ky] / d[kz], 1 / d[kz]
+    alignas(32) double origin[4];  // ox, oy, oz: o[kx], o[ky], o[kz]
+
+    double sx() const { return shear[0]; }
+    double sy() const { return shear[1]; }
+    double sz() const { return shear[2]; }
+    double ox() const { return origin[0]; }
+    double oy() const { return origin[1]; }
+    double oz() const { return origin[2]; }
 
     explicit RayShear(const Ray& ray) {
         // Branch-free, as a diffuse ray's dominant axis is anyone's guess: the axes from tables
@@ -52,25 +62,41 @@ struct RayShear {
         // A negative dominant component swaps x and y, which keeps the winding, so the edge
         // functions' signs mean the same for every ray.
         const unsigned negative = static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_LT_OQ)));
-        const unsigned flip = negative >> kz & 1;
-        static constexpr int kX[3][2] = {{1, 2}, {2, 0}, {0, 1}};
-        kx = kX[kz][flip];
-        ky = 3 - kz - kx;  // the remaining axis
-        const __m256i order = _mm256_setr_epi32(2 * kx, 2 * kx + 1, 2 * ky, 2 * ky + 1, 2 * kz, 2 * kz + 1, 2 * kz, 2 * kz + 1);
+        const Axes& axes = kAxes[2 * kz + (negative >> kz & 1)];
+        kx = axes.x;
+        ky = axes.y;
+        const __m256i order = _mm256_load_si256(reinterpret_cast<const __m256i*>(axes.lanes));
         const auto permuted = [&](__m256d v) {
             return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(v), order));
         };
         const __m256d pd = permuted(d);  // d[kx], d[ky], d[kz], d[kz]
-        alignas(32) double q[4], po[4];
-        _mm256_store_pd(q, _mm256_div_pd(_mm256_blend_pd(pd, _mm256_set1_pd(1.0), 0b1100), _mm256_permute4x64_pd(pd, 0xAA)));
-        _mm256_store_pd(po, permuted(_mm256_setr_pd(ray.o.x, ray.o.y, ray.o.z, 1.0)));  // lane 3: see FusedRayBoxTest::covers
-        sx = q[0];
-        sy = q[1];
-        sz = q[2];
-        ox = po[0];
-        oy = po[1];
-        oz = po[2];
+        _mm256_store_pd(shear, _mm256_div_pd(_mm256_blend_pd(pd, _mm256_set1_pd(1.0), 0b1100), _mm256_permute4x64_pd(pd, 0xAA)));
+        _mm256_store_pd(origin, permuted(_mm256_setr_pd(ray.o.x, ray.o.y, ray.o.z, 1.0)));  // lane 3: see FusedRayBoxTest::covers
     }
+
+private:
+    // For each dominant axis z and flip of x and y (index 2z + flip): the axes that become x
+    // and y, and VPERMPS's indices that gather the doubles x, y, z, z of a vector.
+    struct Axes {
+        alignas(32) int32_t lanes[8];
+        int x, y;
+    };
+    static constexpr std::array<Axes, 6> kAxes = [] {
+        constexpr int kX[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+        std::array<Axes, 6> table{};
+        for (int z = 0; z < 3; ++z)
+            for (int flip = 0; flip < 2; ++flip) {
+                Axes& a = table[2 * z + flip];
+                a.x = kX[z][flip];
+                a.y = 3 - z - a.x;
+                const int gathered[4] = {a.x, a.y, z, z};
+                for (int lane = 0; lane < 4; ++lane) {
+                    a.lanes[2 * lane] = 2 * gathered[lane];
+                    a.lanes[2 * lane + 1] = 2 * gathered[lane] + 1;
+                }
+            }
+        return table;
+    }();
 };
 
 namespace detail {
@@ -81,9 +107,9 @@ namespace detail {
 // vertex) counts as inside.
 inline bool watertight_test(const double a[3], const double b[3], const double c[3], const RayShear& s,
                             const Ray& ray, TriangleHit& hit) {
-    const double a2[2] = {a[0] - s.sx * a[2], a[1] - s.sy * a[2]};
-    const double b2[2] = {b[0] - s.sx * b[2], b[1] - s.sy * b[2]};
-    const double c2[2] = {c[0] - s.sx * c[2], c[1] - s.sy * c[2]};
+    const double a2[2] = {a[0] - s.sx() * a[2], a[1] - s.sy() * a[2]};
+    const double b2[2] = {b[0] - s.sx() * b[2], b[1] - s.sy() * b[2]};
+    const double c2[2] = {c[0] - s.sx() * c[2], c[1] - s.sy() * c[2]};
     double u, v, w;
     edge_functions(a2, b2, c2, u, v, w);
     if (u == 0 || v == 0 || w == 0) {
@@ -100,7 +126,7 @@ inline bool watertight_test(const double a[3], const double b[3], const double c
     const double det = u + v + w;
     if (det == 0) return false;  // the ray lies in the triangle's plane, or it is degenerate
 
-    const double tz = u * (s.sz * a[2]) + v * (s.sz * b[2]) + w * (s.sz * c[2]);
+    const double tz = u * (s.sz() * a[2]) + v * (s.sz() * b[2]) + w * (s.sz() * c[2]);
     const double inv_det = 1.0 / det;
     const double t = tz * inv_det;
     if (!(t > ray.tmin && t <= ray.tmax)) return false;
@@ -125,9 +151,9 @@ struct Triangle {
 
     bool intersect(const Ray& ray, TriangleHit& hit) const { return intersect(ray, RayShear(ray), hit); }
     bool intersect(const Ray& ray, const RayShear& s, TriangleHit& hit) const {
-        const double a[3] = {v0[s.kx] - s.ox, v0[s.ky] - s.oy, v0[s.kz] - s.oz};
-        const double b[3] = {v1[s.kx] - s.ox, v1[s.ky] - s.oy, v1[s.kz] - s.oz};
-        const double c[3] = {v2[s.kx] - s.ox, v2[s.ky] - s.oy, v2[s.kz] - s.oz};
+        const double a[3] = {v0[s.kx] - s.ox(), v0[s.ky] - s.oy(), v0[s.kz] - s.oz()};
+        const double b[3] = {v1[s.kx] - s.ox(), v1[s.ky] - s.oy(), v1[s.kz] - s.oz()};
+        const double c[3] = {v2[s.kx] - s.ox(), v2[s.ky] - s.oy(), v2[s.kz] - s.oz()};
         return detail::watertight_test(a, b, c, s, ray, hit);
     }
 
@@ -160,9 +186,9 @@ struct PackedTriangle {
     }
     // Bit for bit what unpack().intersect() answers, without building the double triangle.
     bool intersect(const Ray& ray, const RayShear& s, TriangleHit& hit) const {
-        const double a[3] = {double(v[0][s.kx]) - s.ox, double(v[0][s.ky]) - s.oy, double(v[0][s.kz]) - s.oz};
-        const double b[3] = {double(v[1][s.kx]) - s.ox, double(v[1][s.ky]) - s.oy, double(v[1][s.kz]) - s.oz};
-        const double c[3] = {double(v[2][s.kx]) - s.ox, double(v[2][s.ky]) - s.oy, double(v[2][s.kz]) - s.oz};
+        const double a[3] = {double(v[0][s.kx]) - s.ox(), double(v[0][s.ky]) - s.oy(), double(v[0][s.kz]) - s.oz()};
+        const double b[3] = {double(v[1][s.kx]) - s.ox(), double(v[1][s.ky]) - s.oy(), double(v[1][s.kz]) - s.oz()};
+        const double c[3] = {double(v[2][s.kx]) - s.ox(), double(v[2][s.ky]) - s.oy(), double(v[2][s.kz]) - s.oz()};
         return detail::watertight_test(a, b, c, s, ray, hit);
     }
 };
@@ -201,10 +227,10 @@ class RunTest {
 public:
     explicit RunTest(const RayShear& s)
         : axis_{uint32_t(s.kx), uint32_t(s.ky), uint32_t(s.kz)},
-          origin_{_mm256_set1_pd(s.ox), _mm256_set1_pd(s.oy), _mm256_set1_pd(s.oz)},
-          sx_(_mm256_set1_pd(s.sx)),
-          sy_(_mm256_set1_pd(s.sy)),
-          sz_(_mm256_set1_pd(s.sz)),
+          origin_{_mm256_broadcast_sd(&s.origin[0]), _mm256_broadcast_sd(&s.origin[1]), _mm256_broadcast_sd(&s.origin[2])},
+          sx_(_mm256_broadcast_sd(&s.shear[0])),
+          sy_(_mm256_broadcast_sd(&s.shear[1])),
+          sz_(_mm256_broadcast_sd(&s.shear[2])),
           shear_(s) {}
 
     // The hit that testing the run's triangles in order with PackedTriangle::intersect finds,
@@ -295,8 +321,10 @@ private:
         return static_cast<unsigned>(_mm256_movemask_pd(ok)) & l.inside;
     }
 
-    // The scalar tests of the lanes in `lanes`, in order.
-    int scalar_closest(const float* run, uint32_t n, unsigned lanes, const Ray& ray, TriangleHit& hit) const {
+    // The scalar tests of the lanes in `lanes`, in order. Out of line: rays meet an edge function
+    // of exactly zero rarely, and inlined, its shear values were hoisted out of the traversal
+    // loop and spilled there, twenty instructions a ray (bench/BENCHMARKS.md, fourteenth round).
+    [[gnu::noinline, gnu::cold]] int scalar_closest(const float* run, uint32_t n, unsigned lanes, const Ray& ray, TriangleHit& hit) const {
         Ray r = ray;
         int best = -1;
         for (; lanes != 0; lanes &= lanes - 1) {
