@@ -110,6 +110,7 @@ inline unsigned Geometry::lanes_of(uint32_t key, uint32_t first) const {
         static constexpr unsigned kLane[triangle_run::kMaxSize + 1] = {0b1, 0b10, 0b100, 0b1000, 0};
         return kLane[std::min(key - first, triangle_run::kMaxSize)];
     }
+    if (key == kNoPrimitive) return 0;  // a camera ray's, and the shared ray sets': no load
     const __m128i indices = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&triangle_at_[first]));
     const __m128i same = _mm_cmpeq_epi32(indices, _mm_set1_epi32(static_cast<int>(key)));
     return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(same)));
