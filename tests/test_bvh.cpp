@@ -280,6 +280,20 @@ TEST(Bvh, NanRaysTerminateWithoutAHit) {
     EXPECT_FALSE(bvh.occluded(Ray{{0, 0, 0}, {nan, nan, nan}}, kNoPrimitive));
 }
 
+// Each of the six coordinates alone, NaN or infinite, makes the ray non-finite; tmin and tmax
+// (an infinite tmax is every camera ray's) do not.
+TEST(Bvh, FiniteOriginAndDirectionLooksAtEachCoordinate) {
+    const double bad[3] = {std::numeric_limits<double>::quiet_NaN(), kInfinity, -kInfinity};
+    EXPECT_TRUE(has_finite_origin_and_direction(Ray{{1, -2, 3}, {0, 0.6, -0.8}, -kInfinity, kInfinity}));
+    for (int coordinate = 0; coordinate < 6; ++coordinate)
+        for (double value : bad) {
+            Ray ray{{1, -2, 3}, {0, 0.6, -0.8}};
+            Vec3& v = coordinate < 3 ? ray.o : ray.d;
+            (coordinate % 3 == 0 ? v.x : coordinate % 3 == 1 ? v.y : v.z) = value;
+            EXPECT_FALSE(has_finite_origin_and_direction(ray)) << "coordinate " << coordinate << " = " << value;
+        }
+}
+
 TEST(Bvh, TreeIsWellFormed) {
     const Scene s = random_scene(15, 100, 5000);
     const Geometry g(s.spheres, s.triangles);
