@@ -1,16 +1,21 @@
-// One ray set through one engine in a plain loop on the calling thread, timed by the thread's CPU
-// time: the step-by-step measurements of the BVH work (bench/BENCHMARKS.md) alternate two builds of
-// this on the same set, and callgrind counts just the loop (`--toggle-collect='*trace_pass*'`).
-//   ray_loop SHARED_DIR MESH KIND ENGINE QUERY PASSES [LIMIT [DUMP]]
+// One ray set through one or more engines in a plain loop on the calling thread, timed by the
+// thread's CPU time: the step-by-step measurements of the BVH work (bench/BENCHMARKS.md) compare
+// engines, or two builds of this, on the same set, and callgrind counts just the loop
+// (`--toggle-collect='*trace_pass*'`).
+//   ray_loop SHARED_DIR MESH KIND ENGINE[,ENGINE...] QUERY PASSES [LIMIT [DUMP]]
 // MESH: a mesh of SHARED_DIR/scenes/meshes; KIND: primary | diffuse; ENGINE: glint | glint-split
 // (glint's tree with spatial splits) | medium | high (Embree's build qualities); QUERY: closest |
-// any. Prints the fastest pass. LIMIT traces only the first rays (0: all): a few thousand rays
-// traced many times stay in the cache. DUMP writes each answer (closest: t, primitive and glint's
-// barycentrics as doubles; any: 0 or 1), to compare two builds bit for bit with cmp. With
-// RAY_LOOP_REPEAT=i in the environment, every ray traced is ray i of the set: its branches become
-// predictable, which tells the cost of mispredicted branches from the rest. With RAY_LOOP_STATS=1,
-// the tree's shape is printed first: glint's by print_tree_stats(), Embree's by its own statistics
-// (device option verbose=2).
+// any. Prints each engine's fastest pass. Several engines take turns pass by pass in the one
+// process, and each after the first also gets the median over the passes of the first's speed
+// over its own: on a shared machine whose speed drifts by a quarter within minutes, two passes a
+// second apart see nearly the same machine (bench/BENCHMARKS.md, fifteenth round). LIMIT traces
+// only the first rays (0: all): a few thousand rays traced many times stay in the cache. DUMP
+// writes the first engine's answers (closest: t, primitive and glint's barycentrics as doubles;
+// any: 0 or 1), to compare two builds bit for bit with cmp. With RAY_LOOP_REPEAT=i in the
+// environment, every ray traced is ray i of the set: its branches become predictable, which tells
+// the cost of mispredicted branches from the rest. With RAY_LOOP_STATS=1, the trees' shapes are
+// printed first: glint's by print_tree_stats(), Embree's by its own statistics (device option
+// verbose=2).
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -18,6 +23,7 @@
 #include <cstdlib>
 #include <cstdio>
 #include <ctime>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -43,20 +49,6 @@ template <typename F>
 }
 
 using Answer = std::array<double, 5>;
-
-// Runs `trace(i, answer)` over the rays PASSES times; returns the fastest pass in seconds.
-template <typename Trace>
-double fastest_pass(size_t n, int passes, std::vector<Answer>& answers, Trace&& trace) {
-    double best = 1e300;
-    for (int p = 0; p < passes; ++p) {
-        const double start = thread_seconds();
-        trace_pass([&] {
-            for (size_t i = 0; i < n; ++i) trace(i, answers[i]);
-        });
-        best = std::min(best, thread_seconds() - start);
-    }
-    return best;
-}
 
 // The SAH's expected visits of a ray that meets the root's box (each box's surface area over the
 // root's; leaves count as leaves, not by their triangles), Embree's measure in its statistics, and
@@ -87,74 +79,150 @@ void print_tree_stats(const Bvh& bvh) {
                 leaf_visits);
 }
 
-double run_glint(const ObjMesh& mesh, const std::vector<RayRecord>& rays, BvhBuild build, bool closest, int passes,
-                 std::vector<Answer>& answers) {
-    const Geometry geometry({}, to_triangles(mesh), Accelerator::bvh, build);
-    if (std::getenv("RAY_LOOP_STATS")) print_tree_stats(geometry.triangle_bvh());
-    return fastest_pass(rays.size(), passes, answers, [&](size_t i, Answer& a) {
-        const RayRecord& r = rays[i];
-        const Ray ray{{r.o[0], r.o[1], r.o[2]}, {r.d[0], r.d[1], r.d[2]}, r.tmin, r.tmax};
-        if (!closest) {
-            a[0] = geometry.occluded(ray, kNoPrimitive);
-            return;
-        }
-        Hit hit;
-        const bool found = geometry.intersect(ray, kNoPrimitive, hit);
-        a = {found ? hit.t : -1.0, found ? double(hit.prim) : -1.0, hit.triangle.b0, hit.triangle.b1, hit.triangle.b2};
+// One engine with its structure built over the mesh, ready to trace the rays again and again.
+class Engine {
+public:
+    virtual ~Engine() = default;
+    // One timed pass over the rays, each answer stored; returns the thread's seconds.
+    virtual double pass(const std::vector<RayRecord>& rays, bool closest, std::vector<Answer>& answers) const = 0;
+};
+
+// Times one pass of `trace(i, answer)` over the rays.
+template <typename Trace>
+double timed_pass(size_t n, std::vector<Answer>& answers, Trace&& trace) {
+    const double start = thread_seconds();
+    trace_pass([&] {
+        for (size_t i = 0; i < n; ++i) trace(i, answers[i]);
     });
+    return thread_seconds() - start;
 }
 
-double run_embree(const ObjMesh& mesh, const std::vector<RayRecord>& rays, RTCBuildQuality quality, bool closest,
-                  int passes, std::vector<Answer>& answers) {
-    RTCDevice device = rtcNewDevice(std::getenv("RAY_LOOP_STATS") ? "threads=1,verbose=2" : "threads=1");
-    RTCScene scene = new_embree_scene(device, mesh, quality);
-    rtcCommitScene(scene);
-    const double best = fastest_pass(rays.size(), passes, answers, [&](size_t i, Answer& a) {
-        const RayRecord& r = rays[i];
-        RTCIntersectContext context;
-        rtcInitIntersectContext(&context);
-        const RTCRay ray{r.o[0], r.o[1], r.o[2], r.tmin, r.d[0], r.d[1], r.d[2], 0.0f, r.tmax, ~0u, 0, 0};
-        if (!closest) {
-            RTCRay shadow = ray;
-            rtcOccluded1(scene, &context, &shadow);
-            a[0] = shadow.tfar < 0;
-            return;
-        }
-        RTCRayHit rh{};
-        rh.ray = ray;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene, &context, &rh);
-        const bool found = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-        a = {found ? rh.ray.tfar : -1.0, found ? double(rh.hit.primID) : -1.0, 0, 0, 0};
-    });
-    rtcReleaseScene(scene);
-    rtcReleaseDevice(device);
-    return best;
+class GlintEngine final : public Engine {
+public:
+    GlintEngine(const ObjMesh& mesh, BvhBuild build) : geometry_({}, to_triangles(mesh), Accelerator::bvh, build) {
+        if (std::getenv("RAY_LOOP_STATS")) print_tree_stats(geometry_.triangle_bvh());
+    }
+    double pass(const std::vector<RayRecord>& rays, bool closest, std::vector<Answer>& answers) const override {
+        return timed_pass(rays.size(), answers, [&](size_t i, Answer& a) {
+            const RayRecord& r = rays[i];
+            const Ray ray{{r.o[0], r.o[1], r.o[2]}, {r.d[0], r.d[1], r.d[2]}, r.tmin, r.tmax};
+            if (!closest) {
+                a[0] = geometry_.occluded(ray, kNoPrimitive);
+                return;
+            }
+            Hit hit;
+            const bool found = geometry_.intersect(ray, kNoPrimitive, hit);
+            a = {found ? hit.t : -1.0, found ? double(hit.prim) : -1.0, hit.triangle.b0, hit.triangle.b1, hit.triangle.b2};
+        });
+    }
+
+private:
+    Geometry geometry_;
+};
+
+class EmbreeEngine final : public Engine {
+public:
+    EmbreeEngine(const ObjMesh& mesh, RTCBuildQuality quality)
+        : device_(rtcNewDevice(std::getenv("RAY_LOOP_STATS") ? "threads=1,verbose=2" : "threads=1")),
+          scene_(new_embree_scene(device_, mesh, quality)) {
+        rtcCommitScene(scene_);
+    }
+    ~EmbreeEngine() override {
+        rtcReleaseScene(scene_);
+        rtcReleaseDevice(device_);
+    }
+    EmbreeEngine(const EmbreeEngine&) = delete;
+    EmbreeEngine& operator=(const EmbreeEngine&) = delete;
+
+    double pass(const std::vector<RayRecord>& rays, bool closest, std::vector<Answer>& answers) const override {
+        return timed_pass(rays.size(), answers, [&](size_t i, Answer& a) {
+            const RayRecord& r = rays[i];
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            const RTCRay ray{r.o[0], r.o[1], r.o[2], r.tmin, r.d[0], r.d[1], r.d[2], 0.0f, r.tmax, ~0u, 0, 0};
+            if (!closest) {
+                RTCRay shadow = ray;
+                rtcOccluded1(scene_, &context, &shadow);
+                a[0] = shadow.tfar < 0;
+                return;
+            }
+            RTCRayHit rh{};
+            rh.ray = ray;
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(scene_, &context, &rh);
+            const bool found = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+            a = {found ? rh.ray.tfar : -1.0, found ? double(rh.hit.primID) : -1.0, 0, 0, 0};
+        });
+    }
+
+private:
+    RTCDevice device_;
+    RTCScene scene_;
+};
+
+std::unique_ptr<Engine> make_engine(const std::string& name, const ObjMesh& mesh) {
+    if (name == "glint" || name == "glint-split")
+        return std::make_unique<GlintEngine>(mesh, name == "glint" ? BvhBuild::binned : BvhBuild::spatial_splits);
+    if (name == "medium" || name == "high")
+        return std::make_unique<EmbreeEngine>(mesh, name == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
+    return nullptr;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[(v.size() - 1) / 2];
+}
+
+std::vector<std::string> split(const std::string& list) {
+    std::vector<std::string> parts;
+    for (size_t from = 0;;) {
+        const size_t comma = list.find(',', from);
+        parts.push_back(list.substr(from, comma - from));
+        if (comma == std::string::npos) return parts;
+        from = comma + 1;
+    }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     if (argc < 7) {
-        std::fprintf(stderr, "usage: ray_loop SHARED_DIR MESH KIND glint|glint-split|medium|high closest|any PASSES [LIMIT [DUMP]]\n");
+        std::fprintf(stderr, "usage: ray_loop SHARED_DIR MESH KIND ENGINE[,ENGINE...] closest|any PASSES [LIMIT [DUMP]]\n");
         return 2;
     }
-    const std::string shared = argv[1], mesh_name = argv[2], kind = argv[3], engine = argv[4], query = argv[5];
+    const std::string shared = argv[1], mesh_name = argv[2], kind = argv[3], query = argv[5];
     const int passes = std::max(1, std::atoi(argv[6]));
     const size_t limit = argc > 7 ? std::strtoull(argv[7], nullptr, 10) : 0;
     const ObjMesh mesh = load_obj(shared + "/scenes/meshes/" + mesh_name + ".obj", size_t(1) << 30);
     std::vector<RayRecord> rays = read_rays(shared + "/rays/" + mesh_name + "_" + kind + ".rays");
     if (limit > 0 && limit < rays.size()) rays.resize(limit);
     if (const char* repeat = std::getenv("RAY_LOOP_REPEAT")) std::fill(rays.begin(), rays.end(), rays.at(std::strtoull(repeat, nullptr, 10)));
-    std::vector<Answer> answers(rays.size());
-    const bool closest = query == "closest";
-    const bool glint = engine == "glint" || engine == "glint-split";
-    const BvhBuild build = engine == "glint-split" ? BvhBuild::spatial_splits : BvhBuild::binned;
-    const double seconds = glint ? run_glint(mesh, rays, build, closest, passes, answers)
-                                 : run_embree(mesh, rays, engine == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM,
-                                                          closest, passes, answers);
-    std::printf("%s %s %s %s: %.6f s a pass (fastest of %d), %zu rays, %.1f ns a ray\n", mesh_name.c_str(), kind.c_str(),
-                engine.c_str(), query.c_str(), seconds, passes, rays.size(), seconds / double(rays.size()) * 1e9);
+    const std::vector<std::string> names = split(argv[4]);
+    std::vector<std::unique_ptr<Engine>> engines;
+    for (const std::string& name : names) {
+        engines.push_back(make_engine(name, mesh));
+        if (!engines.back()) {
+            std::fprintf(stderr, "ray_loop: unknown engine '%s' (glint, glint-split, medium or high)\n", name.c_str());
+            return 2;
+        }
+    }
+    // The engines' passes take turns, so that a slow spell of the machine falls on all of them.
+    std::vector<Answer> answers(rays.size()), others(rays.size());  // DUMP writes the first engine's
+    std::vector<std::vector<double>> seconds(engines.size());
+    for (int p = 0; p < passes; ++p)
+        for (size_t e = 0; e < engines.size(); ++e)
+            seconds[e].push_back(engines[e]->pass(rays, query == "closest", e == 0 ? answers : others));
+    for (size_t e = 0; e < engines.size(); ++e) {
+        const double best = *std::min_element(seconds[e].begin(), seconds[e].end());
+        std::printf("%s %s %s %s: %.6f s a pass (fastest of %d), %zu rays, %.1f ns a ray", mesh_name.c_str(), kind.c_str(),
+                    names[e].c_str(), query.c_str(), best, passes, rays.size(), best / double(rays.size()) * 1e9);
+        if (e > 0) {
+            std::vector<double> ratio;
+            for (int p = 0; p < passes; ++p) ratio.push_back(seconds[e][p] / seconds[0][p]);
+            std::printf("; %s's speed over this one's, median of the passes' ratios: %.4f", names[0].c_str(), median(ratio));
+        }
+        std::printf("\n");
+    }
     if (argc > 8) {
         std::FILE* f = std::fopen(argv[8], "wb");
         if (f == nullptr || std::fwrite(answers.data(), sizeof(Answer), answers.size(), f) != answers.size()) return 1;
