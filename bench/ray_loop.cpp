@@ -4,18 +4,18 @@
 // (`--toggle-collect='*trace_pass*'`).
 //   ray_loop SHARED_DIR MESH KIND ENGINE[,ENGINE...] QUERY PASSES [LIMIT [DUMP]]
 // MESH: a mesh of SHARED_DIR/scenes/meshes; KIND: primary | diffuse; ENGINE: glint | glint-split
-// (glint's tree with spatial splits) | medium | high (Embree's build qualities); QUERY: closest |
-// any. Prints each engine's fastest pass. Several engines take turns pass by pass in the one
-// process, and each after the first also gets the median over the passes of the first's speed
-// over its own: on a shared machine whose speed drifts by a quarter within minutes, two passes a
-// second apart see nearly the same machine (bench/BENCHMARKS.md, fifteenth round). LIMIT traces
-// only the first rays (0: all): a few thousand rays traced many times stay in the cache. DUMP
-// writes the first engine's answers (closest: t, primitive and glint's barycentrics as doubles;
-// any: 0 or 1), to compare two builds bit for bit with cmp. With RAY_LOOP_REPEAT=i in the
-// environment, every ray traced is ray i of the set: its branches become predictable, which tells
-// the cost of mispredicted branches from the rest. With RAY_LOOP_STATS=1, the trees' shapes are
-// printed first: glint's by print_tree_stats(), Embree's by its own statistics (device option
-// verbose=2).
+// (glint's tree with spatial splits), either with -avx2 (its AVX2 path, not the widest) | medium |
+// high (Embree's build qualities); QUERY: closest | any. Prints each engine's fastest pass.
+// Several engines take turns pass by pass in the one process, and each after the first also gets
+// the median over the passes of the first's speed over its own: on a shared machine whose speed
+// drifts by a quarter within minutes, two passes a second apart see nearly the same machine
+// (bench/BENCHMARKS.md, fifteenth round). LIMIT traces only the first rays (0: all): a few
+// thousand rays traced many times stay in the cache. DUMP writes the first engine's answers
+// (closest: t, primitive and glint's barycentrics as doubles; any: 0 or 1), to compare two builds
+// bit for bit with cmp. With RAY_LOOP_REPEAT=i in the environment, every ray traced is ray i of the
+// set: its branches become predictable, which tells the cost of mispredicted branches from the
+// rest. With RAY_LOOP_STATS=1, the trees' shapes are printed first: glint's by print_tree_stats(),
+// Embree's by its own statistics (device option verbose=2).
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -99,7 +99,8 @@ double timed_pass(size_t n, std::vector<Answer>& answers, Trace&& trace) {
 
 class GlintEngine final : public Engine {
 public:
-    GlintEngine(const ObjMesh& mesh, BvhBuild build) : geometry_({}, to_triangles(mesh), Accelerator::bvh, build) {
+    GlintEngine(const ObjMesh& mesh, BvhBuild build, Isa isa) : geometry_({}, to_triangles(mesh), Accelerator::bvh, build) {
+        geometry_.set_isa(isa);
         if (std::getenv("RAY_LOOP_STATS")) print_tree_stats(geometry_.triangle_bvh());
     }
     double pass(const std::vector<RayRecord>& rays, bool closest, std::vector<Answer>& answers) const override {
@@ -160,10 +161,15 @@ private:
     RTCScene scene_;
 };
 
-std::unique_ptr<Engine> make_engine(const std::string& name, const ObjMesh& mesh) {
+// glint's engines may end in -avx2: its AVX2 path where the processor has AVX-512VL.
+std::unique_ptr<Engine> make_engine(std::string name, const ObjMesh& mesh) {
+    const std::string avx2 = "-avx2";
+    const bool want_avx2 = name.size() > avx2.size() && name.ends_with(avx2);
+    if (want_avx2) name.resize(name.size() - avx2.size());
     if (name == "glint" || name == "glint-split")
-        return std::make_unique<GlintEngine>(mesh, name == "glint" ? BvhBuild::binned : BvhBuild::spatial_splits);
-    if (name == "medium" || name == "high")
+        return std::make_unique<GlintEngine>(mesh, name == "glint" ? BvhBuild::binned : BvhBuild::spatial_splits,
+                                             want_avx2 ? Isa::avx2 : best_isa());
+    if (!want_avx2 && (name == "medium" || name == "high"))
         return std::make_unique<EmbreeEngine>(mesh, name == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
     return nullptr;
 }
@@ -202,7 +208,7 @@ int main(int argc, char** argv) {
     for (const std::string& name : names) {
         engines.push_back(make_engine(name, mesh));
         if (!engines.back()) {
-            std::fprintf(stderr, "ray_loop: unknown engine '%s' (glint, glint-split, medium or high)\n", name.c_str());
+            std::fprintf(stderr, "ray_loop: unknown engine '%s' (glint, glint-split, either with -avx2, medium or high)\n", name.c_str());
             return 2;
         }
     }
