@@ -75,13 +75,14 @@ public:
     // positions first..first+count-1, in that order, shrinking ray.tmax to each hit, and returns
     // whether any was hit. Returns whether anything was hit.
     // Always inlined, as is any(): the call's prologue, spills and epilogue were ~50 of a
-    // primary ray's 680 instructions.
-    template <typename Test>
+    // primary ray's 680 instructions. kAvx512: the caller runs on AVX-512, whose embedded
+    // rounding shortens the step from a hit to the next box test.
+    template <bool kAvx512 = false, typename Test>
     [[gnu::always_inline]] bool closest(Ray& ray, Test&& test) const {
         if (nodes_.empty()) return false;
         // Nearly every ray takes the fused box test, so the branch is predicted.
-        if (FusedRayBoxTest::covers(ray)) return closest(ray, FusedRayBoxTest(ray), test);
-        return closest(ray, RayBoxTest(ray), test);
+        if (FusedRayBoxTest::covers(ray)) return closest<kAvx512>(ray, FusedRayBoxTest(ray), test);
+        return closest<kAvx512>(ray, RayBoxTest(ray), test);
     }
 
     // Any hit in (tmin, tmax]: `test(first, count, ray)` returns whether one of the leaf's
@@ -97,7 +98,7 @@ private:
     // Each level leaves at most 7 behind, and the bottom holds kStackEnd.
     static constexpr int kStackSize = (kBvhWidth - 1) * kMaxDepth + 2;
 
-    template <typename BoxTest, typename Test>
+    template <bool kAvx512, typename BoxTest, typename Test>
     [[gnu::always_inline]] bool closest(Ray& ray, const BoxTest& box, Test& test) const {
         const BvhNode* const nodes = nodes_.data();  // held here: the tests' stores might alias nodes_
         uint64_t stack[kStackSize];
@@ -134,10 +135,8 @@ private:
                 if (ref == kStackEnd) return found;
                 if (test(ChildRef::first(ref), ChildRef::count(ref), ray)) {
                     // Only a hit moves the limit; rounding it costs more than the test's share.
-                    // Rounded in AVX, without the branch of the scalar rounding: whether the
-                    // nearest float lies below the hit's distance is a coin toss.
                     found = true;
-                    tmax = _mm_cvtss_f32(to_float_up(_mm256_set1_pd(ray.tmax)));
+                    tmax = limit_after_hit<kAvx512>(ray.tmax);
                     tmax8 = _mm256_set1_ps(tmax);
                     cull = cull_key(tmax);
                 }
@@ -193,6 +192,14 @@ private:
 
     static const BvhNode& at(const BvhNode* nodes, uint32_t ref) {
         return *reinterpret_cast<const BvhNode*>(reinterpret_cast<const char*>(nodes) + size_t{ref} * 4);
+    }
+
+    // A hit's distance rounded up to float. Without AVX-512, in AVX, without the branch of the
+    // scalar rounding: whether the nearest float lies below the distance is a coin toss.
+    template <bool kAvx512>
+    static float limit_after_hit(double t) {
+        if constexpr (kAvx512) return to_float_up_avx512(t);
+        return _mm_cvtss_f32(to_float_up(_mm256_set1_pd(t)));
     }
 
     // The lowest slot in `mask`, which loses it.

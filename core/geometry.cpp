@@ -118,6 +118,7 @@ inline unsigned Geometry::lanes_of(uint32_t key, uint32_t first) const {
 
 // A triangle is flat, so a ray leaving it cannot meet it again; a sphere is told, so that it
 // keeps only the far root (see Sphere::intersect).
+template <bool kAvx512>
 inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
     const uint32_t skip = leave_out_key(self);
     const RayShear shear(ray);
@@ -130,7 +131,7 @@ inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const 
         hit.prim = triangle_id(triangle_at_.empty() ? pos : triangle_at_[pos]);
         return true;
     };
-    if (accelerator_ == Accelerator::bvh) return triangle_bvh_.closest(ray, test_run);
+    if (accelerator_ == Accelerator::bvh) return triangle_bvh_.closest<kAvx512>(ray, test_run);
     bool found = false;
     for (uint32_t pos = 0; pos < triangle_count_; ++pos) found |= test_run(pos, 1, ray);
     return found;
@@ -140,10 +141,13 @@ inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const 
 // AVX2 code (the traversal, the box and run tests) into the AVX-512 function and allocate it
 // there with 32 registers; nothing compiled for AVX-512 is emitted out of line where AVX2 code
 // could link to it. Rounding is the same: the same IEEE operations, and -ffp-contract=off keeps
-// AVX-512F's fused multiply-adds out. The leaf lambdas are always inlined: used by both copies,
+// AVX-512F's fused multiply-adds out; the one AVX-512 instruction of the closest-hit copy's own,
+// the limit's rounding after a hit, rounds as the AVX code does (to_float_up_avx512). The leaf lambdas are always inlined: used by both copies,
 // GCC would otherwise call them out of line, leaf test and all, from both.
-bool Geometry::closest_triangle_avx2(Ray& ray, uint32_t self, Hit& hit) const { return closest_triangle(ray, self, hit); }
-bool Geometry::closest_triangle_avx512(Ray& ray, uint32_t self, Hit& hit) const { return closest_triangle(ray, self, hit); }
+bool Geometry::closest_triangle_avx2(Ray& ray, uint32_t self, Hit& hit) const { return closest_triangle<false>(ray, self, hit); }
+bool Geometry::closest_triangle_avx512(Ray& ray, uint32_t self, Hit& hit) const {
+    return closest_triangle<true>(ray, self, hit);
+}
 bool Geometry::triangle_blocks_avx2(const Ray& ray, uint32_t self, uint32_t target) const {
     return triangle_blocks(ray, self, target);
 }

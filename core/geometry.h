@@ -94,6 +94,7 @@ private:
     }
     void store_runs(const std::vector<PackedTriangle>& packed, const std::vector<uint32_t>& triangle_at);
     // The triangle queries, written once and instantiated for each Isa below.
+    template <bool kAvx512>
     [[gnu::always_inline]] bool closest_triangle(Ray& ray, uint32_t self, Hit& hit) const;
     bool closest_triangle_avx2(Ray& ray, uint32_t self, Hit& hit) const;
     [[gnu::target("avx512f,avx512vl")]] bool closest_triangle_avx512(Ray& ray, uint32_t self, Hit& hit) const;

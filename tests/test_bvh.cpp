@@ -270,6 +270,20 @@ TEST(Bvh, FourWideDirectedRoundingMatchesScalar) {
     EXPECT_TRUE(std::isnan(nan[0]));
 }
 
+// The traversal's one-instruction rounding after a hit (AVX-512 only) is the scalar rounding bit
+// for bit, on the same special and random values.
+TEST(Bvh, EmbeddedRoundingMatchesScalar) {
+    if (best_isa() != Isa::avx512) GTEST_SKIP() << "no AVX-512VL here";
+    constexpr double kMaxF = std::numeric_limits<float>::max();
+    std::vector<double> values = {0.0, -0.0, 1.0, -1.0, 0.1, -0.1, 1e-45, -1e-45, 1e-310, -1e-310, 1e-39, kMaxF,
+                                  -kMaxF, kMaxF * (1 + 0x1p-30), -kMaxF * (1 + 0x1p-30), 1e39, -1e39, kInfinity, -kInfinity};
+    Rng rng(19, 0, 0);
+    for (int i = 0; i < 4000; ++i) values.push_back((rng.uniform() - 0.5) * std::pow(10.0, rng.uniform() * 90 - 45));
+    for (double v : values)
+        EXPECT_EQ(std::bit_cast<uint32_t>(to_float_up_avx512(v)), std::bit_cast<uint32_t>(to_float_up(v))) << v;
+    EXPECT_TRUE(std::isnan(to_float_up_avx512(std::numeric_limits<double>::quiet_NaN())));
+}
+
 TEST(Bvh, NanRaysTerminateWithoutAHit) {
     const Scene s = random_scene(14, 50, 500);
     const Geometry bvh(s.spheres, s.triangles);
