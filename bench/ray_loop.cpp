@@ -164,7 +164,7 @@ private:
 // glint's engines may end in -avx2: its AVX2 path where the processor has AVX-512VL.
 std::unique_ptr<Engine> make_engine(std::string name, const ObjMesh& mesh) {
     const std::string avx2 = "-avx2";
-    const bool want_avx2 = name.size() > avx2.size() && name.ends_with(avx2);
+    const bool want_avx2 = name.ends_with(avx2);
     if (want_avx2) name.resize(name.size() - avx2.size());
     if (name == "glint" || name == "glint-split")
         return std::make_unique<GlintEngine>(mesh, name == "glint" ? BvhBuild::binned : BvhBuild::spatial_splits,

@@ -142,8 +142,9 @@ inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const 
 // there with 32 registers; nothing compiled for AVX-512 is emitted out of line where AVX2 code
 // could link to it. Rounding is the same: the same IEEE operations, and -ffp-contract=off keeps
 // AVX-512F's fused multiply-adds out; the one AVX-512 instruction of the closest-hit copy's own,
-// the limit's rounding after a hit, rounds as the AVX code does (to_float_up_avx512). The leaf lambdas are always inlined: used by both copies,
-// GCC would otherwise call them out of line, leaf test and all, from both.
+// the limit's rounding after a hit, rounds as the AVX code does (to_float_up_avx512). The leaf
+// lambdas are always inlined: used by both copies, GCC would otherwise call them out of line,
+// leaf test and all, from both.
 bool Geometry::closest_triangle_avx2(Ray& ray, uint32_t self, Hit& hit) const { return closest_triangle<false>(ray, self, hit); }
 bool Geometry::closest_triangle_avx512(Ray& ray, uint32_t self, Hit& hit) const {
     return closest_triangle<true>(ray, self, hit);

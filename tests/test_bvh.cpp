@@ -242,15 +242,22 @@ TEST(Bvh, FusedBoxTestAgreesWithTheSlabTest) {
     EXPECT_GT(rejected, 5000);
 }
 
+// Doubles that try a rounding to float: signed zeros, subnormals, float's range limits,
+// infinities, and random values of every magnitude from the stream `seed`.
+std::vector<double> directed_rounding_values(uint64_t seed) {
+    constexpr double kMaxF = std::numeric_limits<float>::max();
+    std::vector<double> values = {0.0, -0.0, 1.0, -1.0, 0.1, -0.1, 1e-45, -1e-45, 1e-310, -1e-310, 1e-39, kMaxF,
+                                  -kMaxF, kMaxF * (1 + 0x1p-30), -kMaxF * (1 + 0x1p-30), 1e39, -1e39, kInfinity, -kInfinity};
+    Rng rng(seed, 0, 0);
+    for (int i = 0; i < 4000; ++i) values.push_back((rng.uniform() - 0.5) * std::pow(10.0, rng.uniform() * 90 - 45));
+    return values;
+}
+
 // The four-wide directed roundings of a ray's setup agree bit for bit with the scalar ones,
 // which bracket the double: on signed zeros, subnormals, float's range limits, infinities, NaN
 // and random values of every magnitude.
 TEST(Bvh, FourWideDirectedRoundingMatchesScalar) {
-    constexpr double kMaxF = std::numeric_limits<float>::max();
-    std::vector<double> values = {0.0, -0.0, 1.0, -1.0, 0.1, -0.1, 1e-45, -1e-45, 1e-310, -1e-310, 1e-39, kMaxF,
-                                  -kMaxF, kMaxF * (1 + 0x1p-30), -kMaxF * (1 + 0x1p-30), 1e39, -1e39, kInfinity, -kInfinity};
-    Rng rng(17, 0, 0);
-    for (int i = 0; i < 4000; ++i) values.push_back((rng.uniform() - 0.5) * std::pow(10.0, rng.uniform() * 90 - 45));
+    const std::vector<double> values = directed_rounding_values(17);
     auto same = [](float a, float b) { return std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b); };
     for (size_t i = 0; i < values.size(); i += 4) {
         double v[4];
@@ -274,12 +281,7 @@ TEST(Bvh, FourWideDirectedRoundingMatchesScalar) {
 // for bit, on the same special and random values.
 TEST(Bvh, EmbeddedRoundingMatchesScalar) {
     if (best_isa() != Isa::avx512) GTEST_SKIP() << "no AVX-512VL here";
-    constexpr double kMaxF = std::numeric_limits<float>::max();
-    std::vector<double> values = {0.0, -0.0, 1.0, -1.0, 0.1, -0.1, 1e-45, -1e-45, 1e-310, -1e-310, 1e-39, kMaxF,
-                                  -kMaxF, kMaxF * (1 + 0x1p-30), -kMaxF * (1 + 0x1p-30), 1e39, -1e39, kInfinity, -kInfinity};
-    Rng rng(19, 0, 0);
-    for (int i = 0; i < 4000; ++i) values.push_back((rng.uniform() - 0.5) * std::pow(10.0, rng.uniform() * 90 - 45));
-    for (double v : values)
+    for (double v : directed_rounding_values(19))
         EXPECT_EQ(std::bit_cast<uint32_t>(to_float_up_avx512(v)), std::bit_cast<uint32_t>(to_float_up(v))) << v;
     EXPECT_TRUE(std::isnan(to_float_up_avx512(std::numeric_limits<double>::quiet_NaN())));
 }
