@@ -4,6 +4,7 @@
 
 #include <array>
 #include <map>
+#include <string>
 
 #include "geometry.h"
 #include "rng.h"
@@ -200,14 +201,53 @@ TEST(Triangle, HitPointsStayWithinTheirErrorBounds) {
     }
 }
 
-// The run test answers as the scalar test of each triangle in turn does: for runs of 2 to 4
+// The scalar tests of a run's triangles in turn, each hit shrinking the limit: the index of the
+// hit kept (-1 for none) and its TriangleHit.
+int scalar_in_turn(const std::vector<PackedTriangle>& packed, unsigned skip, const Ray& ray, TriangleHit& kept) {
+    const RayShear shear(ray);
+    Ray r = ray;
+    int expected = -1;
+    TriangleHit hit;
+    for (uint32_t i = 0; i < packed.size(); ++i)
+        if (!(skip >> i & 1) && packed[i].intersect(r, shear, hit)) {
+            expected = int(i);
+            kept = hit;
+            r.tmax = hit.t;
+        }
+    return expected;
+}
+
+// Whether RunTest's closest and any-hit answers for the run are the scalar tests' in turn, bit
+// for bit; returns the index of the triangle hit, or -1.
+int expect_run_as_scalar(const std::vector<float>& run, const std::vector<PackedTriangle>& packed, unsigned skip,
+                         const Ray& ray, const std::string& where) {
+    TriangleHit expected_hit, got;
+    const int expected = scalar_in_turn(packed, skip, ray, expected_hit);
+    const RayShear shear(ray);
+    const RunTest test(shear);
+    const auto n = static_cast<uint32_t>(packed.size());
+    EXPECT_EQ(test.closest(run.data(), n, skip, ray, got), expected) << where;
+    EXPECT_EQ(test.any(run.data(), n, skip, ray), expected >= 0) << where;
+    if (expected >= 0) {
+        EXPECT_EQ(got.t, expected_hit.t) << where;
+        EXPECT_EQ(got.b0, expected_hit.b0) << where;
+        EXPECT_EQ(got.b1, expected_hit.b1) << where;
+        EXPECT_EQ(got.b2, expected_hit.b2) << where;
+    }
+    return expected;
+}
+
+// The run test answers as the scalar test of each triangle in turn does: for runs of 1 to 4
 // triangles and rays aimed at random points, at a shared edge and at vertices (from far away
 // too, so that the edge functions are tiny against the coordinates), the same triangle, t and
 // barycentrics bit for bit, the nearest and the last of equals, with a skipped lane left out.
+// The limits are tried where a comparison off by one unit in the last place would show: tmax at
+// the hit's t and one unit either side of it, tmin at it and one unit below, and the ray turned
+// round, so that the triangles lie behind it, with tmin 0 and -inf.
 TEST(Triangle, RunTestAnswersAsTheScalarTestInTurn) {
     Rng rng(9, 0, 0);
     auto point = [&] { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 2 - Vec3{1}; };
-    int hits = 0, shared_edge_hits = 0;
+    int hits = 0, shared_edge_hits = 0, limit_hits = 0, behind_hits = 0;
     for (int trial = 0; trial < 4000; ++trial) {
         const uint32_t n = 1 + trial % 4;
         const Vec3 offset = trial % 2 ? Vec3{1e4, -3e3, 7e3} : Vec3{0, 0, 0};
@@ -230,32 +270,28 @@ TEST(Triangle, RunTestAnswersAsTheScalarTestInTurn) {
                                         : aim.v0 + (point() * 1e-9);
         const Vec3 origin = target + normalize(point()) * (trial % 5 == 0 ? 1e5 : 3.0);
         const Ray ray{origin, normalize(target - origin), trial % 3 == 0 ? -kInfinity : 0.0, kInfinity};
-        const RayShear shear(ray);
         const unsigned skip = trial % 7 == 0 ? 1u : 0u;
-        // The scalar tests in turn.
-        Ray r = ray;
-        int expected = -1;
-        TriangleHit expected_hit, hit;
-        for (uint32_t i = 0; i < n; ++i)
-            if (!(skip >> i & 1) && packed[i].intersect(r, shear, hit)) {
-                expected = int(i);
-                expected_hit = hit;
-                r.tmax = hit.t;
-            }
-        TriangleHit got;
-        const RunTest test(shear);
-        ASSERT_EQ(test.closest(run.data(), n, skip, ray, got), expected) << "trial " << trial;
-        EXPECT_EQ(test.any(run.data(), n, skip, ray), expected >= 0) << "trial " << trial;
+        const std::string where = "trial " + std::to_string(trial);
+        const int expected = expect_run_as_scalar(run, packed, skip, ray, where);
+        for (const double tmin : {0.0, -kInfinity})
+            behind_hits += expect_run_as_scalar(run, packed, skip, {ray.o, -ray.d, tmin, kInfinity}, where + ", turned round") >= 0;
         if (expected < 0) continue;
         ++hits;
         shared_edge_hits += kind == 1 && expected < 2;
-        EXPECT_EQ(got.t, expected_hit.t);
-        EXPECT_EQ(got.b0, expected_hit.b0);
-        EXPECT_EQ(got.b1, expected_hit.b1);
-        EXPECT_EQ(got.b2, expected_hit.b2);
+        TriangleHit hit;
+        scalar_in_turn(packed, skip, ray, hit);
+        const double below = std::nextafter(hit.t, -kInfinity), above = std::nextafter(hit.t, kInfinity);
+        for (const double tmax : {hit.t, below, above})
+            limit_hits += expect_run_as_scalar(run, packed, skip, {ray.o, ray.d, ray.tmin, tmax}, where + ", tmax near the hit") >= 0;
+        for (const double tmin : {hit.t, below})
+            expect_run_as_scalar(run, packed, skip, {ray.o, ray.d, tmin, kInfinity}, where + ", tmin near the hit");
     }
     EXPECT_GT(hits, 2000);
     EXPECT_GT(shared_edge_hits, 300);
+    // Below the hit's t, another triangle may still be hit; at and above it, this one is.
+    EXPECT_GE(limit_hits, 2 * hits);
+    // Turned round, only tmin = -inf sees the triangles.
+    EXPECT_GT(behind_hits, hits / 2);
 }
 
 }  // namespace
