@@ -218,10 +218,10 @@ int scalar_in_turn(const std::vector<PackedTriangle>& packed, unsigned skip, con
 }
 
 // Whether RunTest's closest and any-hit answers for the run are the scalar tests' in turn, bit
-// for bit; returns the index of the triangle hit, or -1.
+// for bit; returns the index of the triangle hit, or -1, with its TriangleHit in `expected_hit`.
 int expect_run_as_scalar(const std::vector<float>& run, const std::vector<PackedTriangle>& packed, unsigned skip,
-                         const Ray& ray, const std::string& where) {
-    TriangleHit expected_hit, got;
+                         const Ray& ray, const std::string& where, TriangleHit& expected_hit) {
+    TriangleHit got;
     const int expected = scalar_in_turn(packed, skip, ray, expected_hit);
     const RayShear shear(ray);
     const RunTest test(shear);
@@ -272,19 +272,18 @@ TEST(Triangle, RunTestAnswersAsTheScalarTestInTurn) {
         const Ray ray{origin, normalize(target - origin), trial % 3 == 0 ? -kInfinity : 0.0, kInfinity};
         const unsigned skip = trial % 7 == 0 ? 1u : 0u;
         const std::string where = "trial " + std::to_string(trial);
-        const int expected = expect_run_as_scalar(run, packed, skip, ray, where);
+        TriangleHit hit, other;
+        const int expected = expect_run_as_scalar(run, packed, skip, ray, where, hit);
         for (const double tmin : {0.0, -kInfinity})
-            behind_hits += expect_run_as_scalar(run, packed, skip, {ray.o, -ray.d, tmin, kInfinity}, where + ", turned round") >= 0;
+            behind_hits += expect_run_as_scalar(run, packed, skip, {ray.o, -ray.d, tmin, kInfinity}, where + ", turned round", other) >= 0;
         if (expected < 0) continue;
         ++hits;
         shared_edge_hits += kind == 1 && expected < 2;
-        TriangleHit hit;
-        scalar_in_turn(packed, skip, ray, hit);
         const double below = std::nextafter(hit.t, -kInfinity), above = std::nextafter(hit.t, kInfinity);
         for (const double tmax : {hit.t, below, above})
-            limit_hits += expect_run_as_scalar(run, packed, skip, {ray.o, ray.d, ray.tmin, tmax}, where + ", tmax near the hit") >= 0;
+            limit_hits += expect_run_as_scalar(run, packed, skip, {ray.o, ray.d, ray.tmin, tmax}, where + ", tmax near the hit", other) >= 0;
         for (const double tmin : {hit.t, below})
-            expect_run_as_scalar(run, packed, skip, {ray.o, ray.d, tmin, kInfinity}, where + ", tmin near the hit");
+            expect_run_as_scalar(run, packed, skip, {ray.o, ray.d, tmin, kInfinity}, where + ", tmin near the hit", other);
     }
     EXPECT_GT(hits, 2000);
     EXPECT_GT(shared_edge_hits, 300);
