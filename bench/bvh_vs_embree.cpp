@@ -38,16 +38,28 @@ double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
-// Runs each of `runs` (each returns the seconds it measured) once a round, g_repeats rounds, and
-// returns each one's median. Interleaved rather than one block per engine, so that a burst of load
-// on this shared machine falls on every engine alike instead of on whichever ran during it.
-std::vector<double> interleaved_medians(const std::vector<std::function<double()>>& runs) {
-    std::vector<std::vector<double>> times(runs.size());
+// Each of `runs` (each returns the seconds it measured) once a round, g_repeats rounds:
+// times[run][round]. Interleaved rather than one block per engine, so that a burst of load on
+// this shared machine falls on every engine alike instead of on whichever ran during it.
+using Times = std::vector<std::vector<double>>;
+Times interleaved_times(const std::vector<std::function<double()>>& runs) {
+    Times times(runs.size());
     for (int round = 0; round < g_repeats; ++round)
         for (size_t i = 0; i < runs.size(); ++i) times[i].push_back(runs[i]());
-    std::vector<double> medians;
-    for (const std::vector<double>& t : times) medians.push_back(median(t));
-    return medians;
+    return times;
+}
+
+// The median over the rounds of f(round): a ratio of two runs taken in the same round is paired,
+// so it holds steady where the machine's drift between rounds moves both runs' times alike
+// (bench/BENCHMARKS.md, fifteenth and eighteenth rounds).
+template <typename F>
+double median_over_rounds(F&& f) {
+    std::vector<double> v;
+    for (int round = 0; round < g_repeats; ++round) v.push_back(f(size_t(round)));
+    return median(std::move(v));
+}
+double median_time(const std::vector<double>& t) {
+    return median_over_rounds([&](size_t r) { return t[r]; });
 }
 
 // Runs f(i) for every ray, in chunks, on `threads` threads.
@@ -123,7 +135,7 @@ void bench_mesh(const std::string& shared, const std::string& name) {
     Geometry glint_bvh, split_bvh;
     // Every build a fresh one (a single build also paid for set-up that later builds do not);
     // Embree's timed around rtcCommitScene alone.
-    const std::vector<double> builds = interleaved_medians({
+    const Times builds = interleaved_times({
         [&] { return seconds([&] { glint_bvh = Geometry({}, triangles, Accelerator::bvh); }); },
         [&] { return seconds([&] { split_bvh = Geometry({}, triangles, Accelerator::bvh, BvhBuild::spatial_splits); }); },
         [&] { double s; const Embree scene(mesh, RTC_BUILD_QUALITY_MEDIUM, s); return s; },
@@ -133,9 +145,10 @@ void bench_mesh(const std::string& shared, const std::string& name) {
     const Embree medium(mesh, RTC_BUILD_QUALITY_MEDIUM, unused);
     const Embree high(mesh, RTC_BUILD_QUALITY_HIGH, unused);
     const auto per_triangle = [n_tris](size_t bytes) { return double(bytes) / double(n_tris); };
+    const auto ms = [&](int e) { return median_time(builds[e]) * 1e3; };
+    const auto time_ratio = [&](int e, int f) { return median_over_rounds([&](size_t r) { return builds[e][r] / builds[f][r]; }); };
     g_build_rows.push_back(format("| %s | %zu | %.1f / %.1f | %.1f / %.1f | %.2f / %.2f | %.1f / %.1f | %.1f / %.1f |", name.c_str(),
-                                  n_tris, builds[0] * 1e3, builds[1] * 1e3, builds[2] * 1e3, builds[3] * 1e3,
-                                  builds[0] / builds[2], builds[1] / builds[3], per_triangle(glint_bvh.memory_bytes()),
+                                  n_tris, ms(0), ms(1), ms(2), ms(3), time_ratio(0, 2), time_ratio(1, 3), per_triangle(glint_bvh.memory_bytes()),
                                   per_triangle(split_bvh.memory_bytes()), per_triangle(medium.bytes), per_triangle(high.bytes)));
     ThreadPool check_pool(2);
     for (const char* kind : {"primary", "diffuse"}) {
@@ -170,16 +183,19 @@ void bench_mesh(const std::string& shared, const std::string& name) {
         for (const auto* query : {closest, any})
             for (ThreadPool* pool : {&one, &two})
                 for (int e = 0; e < 4; ++e) runs.push_back(pass(*pool, query[e]));
-        const std::vector<double> t = interleaved_medians(runs);
-        // rate[q][threads - 1][engine]: Mrays/s, engines glint, glint split, MEDIUM, HIGH.
-        double rate[2][2][4];
-        for (size_t i = 0; i < t.size(); ++i) rate[i / 8][i / 4 % 2][i % 4] = double(n) / t[i] / 1e6;
+        // t[8q + 4(threads - 1) + engine], engines glint, glint split, MEDIUM, HIGH.
+        const Times t = interleaved_times(runs);
         for (int q = 0; q < 2; ++q) {
-            const double(&r)[2][4] = rate[q];
+            const std::vector<double>* one_thread = &t[8 * size_t(q)];
+            const auto rate = [&](int threads, int e) { return double(n) / median_time(t[8 * size_t(q) + 4 * size_t(threads - 1) + size_t(e)]) / 1e6; };
+            // glint's speed over Embree's, paired in each round, on one thread.
+            const auto speedup = [&](int e, int f) { return median_over_rounds([&](size_t r) { return one_thread[f][r] / one_thread[e][r]; }); };
+            const double best = median_over_rounds([&](size_t r) {
+                return std::min(one_thread[2][r], one_thread[3][r]) / std::min(one_thread[0][r], one_thread[1][r]);
+            });
             g_ray_rows.push_back(format("| %s_%s | %s | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f | %.2f | %.2f | %zu / %zu |",
-                                        name.c_str(), kind, q == 0 ? "closest" : "any-hit", r[0][0], r[1][0], r[0][1], r[1][1],
-                                        r[0][2], r[1][2], r[0][3], r[1][3], r[0][0] / r[0][2], r[0][1] / r[0][3],
-                                        std::max(r[0][0], r[0][1]) / std::max(r[0][2], r[0][3]),
+                                        name.c_str(), kind, q == 0 ? "closest" : "any-hit", rate(1, 0), rate(2, 0), rate(1, 1), rate(2, 1),
+                                        rate(1, 2), rate(2, 2), rate(1, 3), rate(2, 3), speedup(0, 2), speedup(1, 3), best,
                                         q == 0 ? disagree[0] : occlusion_disagree[0], q == 0 ? disagree[1] : occlusion_disagree[1]));
         }
     }
@@ -198,7 +214,9 @@ int main(int argc, char** argv) {
     std::printf("| mesh | triangles | glint build ms: binned / split | Embree ms: MEDIUM / HIGH | glint / Embree build time: binned / MEDIUM, split / HIGH | glint B/tri: binned / split | Embree B/tri: MEDIUM / HIGH |\n");
     std::printf("|---|---|---|---|---|---|---|\n");
     for (const auto& row : g_build_rows) std::printf("%s\n", row.c_str());
-    std::printf("\nglint's triangle queries run in %s.\n", best_isa() == Isa::avx512 ? "AVX-512VL" : "AVX2");
+    std::printf("\nglint's triangle queries run in %s. Times and speeds are medians of %d interleaved rounds; each ratio\n"
+                "is the median of the rounds' own ratios, the two runs it compares taken in the same round.\n",
+                best_isa() == Isa::avx512 ? "AVX-512VL" : "AVX2", g_repeats);
     std::printf("\n| ray set | query | glint binned Mrays/s, 1 / 2 threads | glint split | Embree MEDIUM | Embree HIGH | binned / MEDIUM, 1 thread | split / HIGH | best glint / best Embree | answers differing from MEDIUM's: binned / split |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& row : g_ray_rows) std::printf("%s\n", row.c_str());
