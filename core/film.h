@@ -12,6 +12,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -20,7 +21,12 @@
 
 namespace glint {
 
-struct PixelSums {
+// Aligned to cache lines: a pixel then spans two lines, not three, and the first holds the
+// camera's sums, which only the thread rendering the pixel's tile writes, while the light
+// tracer's splats, from any thread, go to the second. Unaligned, two threads' writes met on
+// shared lines: 2 threads rendered the Cornell box 7% slower (bench/BENCHMARKS.md, eighteenth
+// round).
+struct alignas(64) PixelSums {
     Rgb sum{0};           // of the samples of the rounds kept
     Rgb round_sq{0};      // of the squares of the rounds' sums
     uint64_t count = 0;   // samples in the rounds kept
@@ -29,6 +35,7 @@ struct PixelSums {
     std::array<int64_t, 3> splat{}, splat_sq{};  // fixed point, see Film::kSplatScale
     uint64_t splats_dropped = 0;                 // non-finite or out of the fixed-point range
 };
+static_assert(sizeof(PixelSums) == 128 && offsetof(PixelSums, splat) >= 64);
 
 class Film {
 public:
