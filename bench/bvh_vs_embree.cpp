@@ -49,17 +49,13 @@ Times interleaved_times(const std::vector<std::function<double()>>& runs) {
     return times;
 }
 
-// The median over the rounds of f(round): a ratio of two runs taken in the same round is paired,
-// so it holds steady where the machine's drift between rounds moves both runs' times alike
-// (bench/BENCHMARKS.md, fifteenth and eighteenth rounds).
-template <typename F>
-double median_over_rounds(F&& f) {
-    std::vector<double> v;
-    for (int round = 0; round < g_repeats; ++round) v.push_back(f(size_t(round)));
-    return median(std::move(v));
-}
-double median_time(const std::vector<double>& t) {
-    return median_over_rounds([&](size_t r) { return t[r]; });
+// The median over the rounds of a[round] / b[round]: a ratio of two runs taken in the same round
+// is paired, so it holds steady where the machine's drift between rounds moves both runs' times
+// alike (bench/BENCHMARKS.md, fifteenth and eighteenth rounds).
+double paired_ratio(const std::vector<double>& a, const std::vector<double>& b) {
+    std::vector<double> ratios;
+    for (size_t round = 0; round < a.size(); ++round) ratios.push_back(a[round] / b[round]);
+    return median(std::move(ratios));
 }
 
 // Runs f(i) for every ray, in chunks, on `threads` threads.
@@ -145,10 +141,9 @@ void bench_mesh(const std::string& shared, const std::string& name) {
     const Embree medium(mesh, RTC_BUILD_QUALITY_MEDIUM, unused);
     const Embree high(mesh, RTC_BUILD_QUALITY_HIGH, unused);
     const auto per_triangle = [n_tris](size_t bytes) { return double(bytes) / double(n_tris); };
-    const auto ms = [&](int e) { return median_time(builds[e]) * 1e3; };
-    const auto time_ratio = [&](int e, int f) { return median_over_rounds([&](size_t r) { return builds[e][r] / builds[f][r]; }); };
+    const auto ms = [&](int e) { return median(builds[e]) * 1e3; };
     g_build_rows.push_back(format("| %s | %zu | %.1f / %.1f | %.1f / %.1f | %.2f / %.2f | %.1f / %.1f | %.1f / %.1f |", name.c_str(),
-                                  n_tris, ms(0), ms(1), ms(2), ms(3), time_ratio(0, 2), time_ratio(1, 3), per_triangle(glint_bvh.memory_bytes()),
+                                  n_tris, ms(0), ms(1), ms(2), ms(3), paired_ratio(builds[0], builds[2]), paired_ratio(builds[1], builds[3]), per_triangle(glint_bvh.memory_bytes()),
                                   per_triangle(split_bvh.memory_bytes()), per_triangle(medium.bytes), per_triangle(high.bytes)));
     ThreadPool check_pool(2);
     for (const char* kind : {"primary", "diffuse"}) {
@@ -187,15 +182,19 @@ void bench_mesh(const std::string& shared, const std::string& name) {
         const Times t = interleaved_times(runs);
         for (int q = 0; q < 2; ++q) {
             const std::vector<double>* one_thread = &t[8 * size_t(q)];
-            const auto rate = [&](int threads, int e) { return double(n) / median_time(t[8 * size_t(q) + 4 * size_t(threads - 1) + size_t(e)]) / 1e6; };
-            // glint's speed over Embree's, paired in each round, on one thread.
-            const auto speedup = [&](int e, int f) { return median_over_rounds([&](size_t r) { return one_thread[f][r] / one_thread[e][r]; }); };
-            const double best = median_over_rounds([&](size_t r) {
-                return std::min(one_thread[2][r], one_thread[3][r]) / std::min(one_thread[0][r], one_thread[1][r]);
-            });
+            const auto rate = [&](int threads, int e) { return double(n) / median(t[8 * size_t(q) + 4 * size_t(threads - 1) + size_t(e)]) / 1e6; };
+            // glint's speed over Embree's on one thread, as Embree's time over glint's; the best of
+            // each from each round's faster engine.
+            const auto fastest = [&](int e, int f) {
+                std::vector<double> times(one_thread[e].size());
+                for (size_t r = 0; r < times.size(); ++r) times[r] = std::min(one_thread[e][r], one_thread[f][r]);
+                return times;
+            };
+            const double best = paired_ratio(fastest(2, 3), fastest(0, 1));
             g_ray_rows.push_back(format("| %s_%s | %s | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f | %.2f | %.2f | %zu / %zu |",
                                         name.c_str(), kind, q == 0 ? "closest" : "any-hit", rate(1, 0), rate(2, 0), rate(1, 1), rate(2, 1),
-                                        rate(1, 2), rate(2, 2), rate(1, 3), rate(2, 3), speedup(0, 2), speedup(1, 3), best,
+                                        rate(1, 2), rate(2, 2), rate(1, 3), rate(2, 3), paired_ratio(one_thread[2], one_thread[0]),
+                                        paired_ratio(one_thread[3], one_thread[1]), best,
                                         q == 0 ? disagree[0] : occlusion_disagree[0], q == 0 ? disagree[1] : occlusion_disagree[1]));
         }
     }

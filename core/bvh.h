@@ -97,7 +97,7 @@ public:
 private:
     // The traversals with RayBoxTest, for the rare rays FusedRayBoxTest does not cover, out of
     // line: inlined beside the fused one, they made the closest-hit function 5.9 KB where it is
-    // now 3.7, and the fused traversal 2-4% slower (bench/BENCHMARKS.md, eighteenth round).
+    // now 3.7, and the fused traversal 1.5-3.5% slower (bench/BENCHMARKS.md, eighteenth round).
     template <bool kAvx512, typename Test>
     [[gnu::noinline]] bool closest_unfused(Ray& ray, Test& test) const {
         return closest<kAvx512>(ray, RayBoxTest(ray), test);
