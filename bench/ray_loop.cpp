@@ -57,19 +57,19 @@ void print_tree_stats(const Bvh& bvh) {
     Bounds3 root;
     const BvhNode& top = bvh.nodes().front();
     for (int slot = 0; slot < kBvhWidth; ++slot)
-        if (top.boxes.used(slot))
+        if (top.used(slot))
             for (int a = 0; a < 3; ++a) {
-                root.lo[a] = std::min(root.lo[a], double(top.boxes.planes[2 * a][slot]));
-                root.hi[a] = std::max(root.hi[a], double(top.boxes.planes[2 * a + 1][slot]));
+                root.lo[a] = std::min(root.lo[a], double(top.plane(2 * a, slot)));
+                root.hi[a] = std::max(root.hi[a], double(top.plane(2 * a + 1, slot)));
             }
     double node_visits = 1, leaf_visits = 0;
     size_t children = 0, leaves = 0, references = 0;
     for (const BvhNode& n : bvh.nodes())
         for (int slot = 0; slot < kBvhWidth; ++slot) {
-            if (!n.boxes.used(slot)) continue;
+            if (!n.used(slot)) continue;
             ++children;
             const uint32_t count = ChildRef::count(n.child[slot]);
-            (count > 0 ? leaf_visits : node_visits) += n.boxes.half_area(slot) / root.half_area();
+            (count > 0 ? leaf_visits : node_visits) += n.half_area(slot) / root.half_area();
             leaves += count > 0;
             references += count;
         }

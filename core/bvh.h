@@ -1,7 +1,7 @@
-// An eight-wide bounding volume hierarchy over any primitives given by their boxes. Built as a
-// binary tree by binned SAH (sah_builder.h) and collapsed to nodes of up to eight children
-// (bvh_collapse.h); traversed iteratively, nearest child first, testing a node's eight child boxes
-// at once in AVX (ray_box_test.h). Primitives are addressed by their position in build order, so a
+// A sixteen-wide bounding volume hierarchy over any primitives given by their boxes. Built as a
+// binary tree by binned SAH (sah_builder.h) and collapsed to nodes of up to sixteen children
+// (bvh_collapse.h); traversed iteratively, nearest child first, testing a node's child boxes eight
+// at a time in AVX (ray_box_test.h). Primitives are addressed by their position in build order, so a
 // caller can store its primitives in that order and read a leaf's primitives as one contiguous run;
 // the primitive tests are template parameters, so the hot loop makes no virtual or indirect calls.
 #pragma once
@@ -20,30 +20,41 @@ namespace glint {
 
 // Where a child slot leads, in one word. A leaf: its first position in build order, shifted
 // left by three, and its primitive count (1..kMaxLeafSize) in the low three bits. An inner node:
-// its offset in the node array in 4-byte words (a multiple of eight, so the low bits are 0),
+// its offset in the node array in 8-byte units (a multiple of eight, so the low bits are 0),
 // which the traversal turns into an address with one scaled add. One word per child keeps a
-// node at 224 bytes and lets the traversal stack hold a child and its entry distance in one
+// node at 448 bytes and lets the traversal stack hold a child and its entry distance in one
 // 64-bit key.
 struct ChildRef {
     static constexpr uint32_t kCountBits = 3;
-    static constexpr uint32_t kNodeWords = 56;  // sizeof(BvhNode) / 4
+    static constexpr uint32_t kNodeUnits = 56;  // sizeof(BvhNode) / 8
     // Keeps every offset in 32 bits: a tree has fewer nodes than primitives.
     static constexpr uint32_t kMaxPrimitives = uint32_t{1} << 26;
-    static constexpr uint32_t node(uint32_t index) { return index * kNodeWords; }
+    static constexpr uint32_t node(uint32_t index) { return index * kNodeUnits; }
     static constexpr uint32_t leaf(uint32_t first, uint32_t count) { return first << kCountBits | count; }
-    static constexpr uint32_t node_index(uint32_t ref) { return ref / kNodeWords; }
+    static constexpr uint32_t node_index(uint32_t ref) { return ref / kNodeUnits; }
     static constexpr uint32_t first(uint32_t ref) { return ref >> kCountBits; }
     static constexpr uint32_t count(uint32_t ref) { return ref & ((1u << kCountBits) - 1); }
 };
 static_assert(BinaryTree::kMaxLeafSize < (1u << ChildRef::kCountBits));
-static_assert(uint64_t{ChildRef::kMaxPrimitives} * ChildRef::kNodeWords < (uint64_t{1} << 32));
+static_assert(uint64_t{ChildRef::kMaxPrimitives} * ChildRef::kNodeUnits < (uint64_t{1} << 32));
 
-// 224 bytes: the boxes of up to eight children and where each child leads.
-struct alignas(32) BvhNode {
-    WideBox boxes;
+// Children a node holds: two box tests' worth. Against eight, the SAH's expected node visits of
+// a ray fall by 26-31% on the bunny and Sponza, and each visit's two tests are independent, so
+// a visit waits for its memory about as long as before (bench/BENCHMARKS.md, nineteenth round).
+inline constexpr int kBvhWidth = 2 * kBoxLanes;
+
+// 448 bytes, seven cache lines: the boxes of up to sixteen children and where each child leads.
+// Slot s's box is lane s % 8 of boxes[s / 8].
+struct alignas(64) BvhNode {
+    WideBox boxes[kBvhWidth / kBoxLanes];
     uint32_t child[kBvhWidth];  // ChildRef words; an unused slot holds 0 behind an empty box
+
+    float& plane(int p, int slot) { return boxes[slot / kBoxLanes].planes[p][slot % kBoxLanes]; }
+    float plane(int p, int slot) const { return boxes[slot / kBoxLanes].planes[p][slot % kBoxLanes]; }
+    bool used(int slot) const { return boxes[slot / kBoxLanes].used(slot % kBoxLanes); }
+    double half_area(int slot) const { return boxes[slot / kBoxLanes].half_area(slot % kBoxLanes); }
 };
-static_assert(sizeof(BvhNode) == 4 * ChildRef::kNodeWords);
+static_assert(sizeof(BvhNode) == 8 * ChildRef::kNodeUnits);
 
 class Bvh {
 public:
@@ -107,7 +118,7 @@ private:
         return any(ray, RayBoxTest(ray), test);
     }
 
-    // Each level leaves at most 7 behind, and the bottom holds kStackEnd.
+    // Each level leaves at most 15 behind, and the bottom holds kStackEnd.
     static constexpr int kStackSize = (kBvhWidth - 1) * kMaxDepth + 2;
 
     template <bool kAvx512, typename BoxTest, typename Test>
@@ -124,8 +135,8 @@ private:
         for (;;) {
             if (ChildRef::count(ref) == 0) {
                 const BvhNode& node = at(nodes, ref);
-                __m256 entries;
-                unsigned mask = box.hit(node.boxes, tmax8, entries);
+                __m256 entries[2];
+                unsigned mask = hits(box, node, tmax8, entries);
                 if (mask != 0) {
                     const unsigned first = first_slot(mask);
                     if (mask == 0) {  // one child entered: no stack
@@ -133,7 +144,8 @@ private:
                         continue;
                     }
                     alignas(32) uint64_t keys[kBvhWidth];
-                    store_keys(entries, node, keys);
+                    store_keys(entries[0], node.child, keys);
+                    store_keys(entries[1], node.child + kBoxLanes, keys + kBoxLanes);
                     uint64_t nearer = keys[first], farther = keys[first_slot(mask)];
                     order(nearer, farther);
                     if (mask == 0) {  // two: push the farther, enter the nearer
@@ -165,18 +177,19 @@ private:
     [[gnu::always_inline]] bool any(const Ray& ray, const BoxTest& box, Test& test) const {
         const BvhNode* const nodes = nodes_.data();
         const __m256 tmax = _mm256_set1_ps(to_float_up(ray.tmax));
-        uint32_t stack[kStackSize + 1];  // + 1: push_others stores eight words to push at most seven
+        uint32_t stack[kStackSize + kBoxLanes];  // push_others stores eight words, whatever it pushes
         stack[0] = kStackEnd;
         uint32_t* top = stack + 1;
         uint32_t ref = ChildRef::node(0);
         for (;;) {
             if (ChildRef::count(ref) == 0) {
-                __m256 entries;
+                __m256 entries[2];
                 const BvhNode& node = at(nodes, ref);
-                unsigned mask = box.hit(node.boxes, tmax, entries);
+                unsigned mask = hits(box, node, tmax, entries);
                 if (mask != 0) {
                     ref = node.child[first_slot(mask)];
-                    top = push_others(node, mask, top);
+                    top = push_others(node.child, mask & kHalfMask, top);
+                    top = push_others(node.child + kBoxLanes, mask >> kBoxLanes, top);
                     continue;
                 }
             } else {
@@ -189,21 +202,30 @@ private:
 
     // The bottom of the traversal stack, so that popping needs no emptiness test: a ChildRef
     // that reads as a leaf, which the leaf branch checks for (2.3 leaf visits a Sponza diffuse
-    // ray against 7.7 pops), but that no real leaf can be, as its first position is out of range.
+    // ray against 7.7 pops on the eight-wide tree), but that no real leaf can be, as its first position is out of range.
     static constexpr uint32_t kStackEnd = ~0u;
     static_assert(ChildRef::first(kStackEnd) >= ChildRef::kMaxPrimitives && ChildRef::count(kStackEnd) != 0);
 
-    // For each mask of child slots, its slots in ascending order, one byte each.
-    static constexpr std::array<uint64_t, 1u << kBvhWidth> kSlotsOf = [] {
-        std::array<uint64_t, 1u << kBvhWidth> slots{};
+    // The node's sixteen boxes, tested as two independent eight: bit s of the result for slot s.
+    template <typename BoxTest>
+    [[gnu::always_inline]] static unsigned hits(const BoxTest& box, const BvhNode& node, __m256 tmax, __m256 entries[2]) {
+        const auto low = static_cast<unsigned>(box.hit(node.boxes[0], tmax, entries[0]));
+        const auto high = static_cast<unsigned>(box.hit(node.boxes[1], tmax, entries[1]));
+        return low | high << kBoxLanes;
+    }
+    static constexpr unsigned kHalfMask = (1u << kBoxLanes) - 1;
+
+    // For each mask of one box test's slots, its slots in ascending order, one byte each.
+    static constexpr std::array<uint64_t, 1u << kBoxLanes> kSlotsOf = [] {
+        std::array<uint64_t, 1u << kBoxLanes> slots{};
         for (unsigned mask = 0; mask < slots.size(); ++mask)
-            for (unsigned slot = 0, n = 0; slot < kBvhWidth; ++slot)
+            for (unsigned slot = 0, n = 0; slot < kBoxLanes; ++slot)
                 if (mask >> slot & 1) slots[mask] |= uint64_t{slot} << 8 * n++;
         return slots;
     }();
 
     static const BvhNode& at(const BvhNode* nodes, uint32_t ref) {
-        return *reinterpret_cast<const BvhNode*>(reinterpret_cast<const char*>(nodes) + size_t{ref} * 4);
+        return *reinterpret_cast<const BvhNode*>(reinterpret_cast<const char*>(nodes) + size_t{ref} * 8);
     }
 
     // A hit's distance rounded up to float. Without AVX-512, in AVX, without the branch of the
@@ -226,9 +248,9 @@ private:
     // other), whose order as an unsigned integer is its order as a number. Built in AVX and read
     // back one load per key, against two loads, a shift and an or per key from the entry
     // distances stored alone.
-    static void store_keys(__m256 entries, const BvhNode& node, uint64_t* keys) {
+    static void store_keys(__m256 entries, const uint32_t* children, uint64_t* keys) {
         const __m256i entry = _mm256_castps_si256(entries);
-        const __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
+        const __m256i child = _mm256_load_si256(reinterpret_cast<const __m256i*>(children));
         // The unpacks interleave within 128-bit halves: with the 64-bit quarters first ordered
         // 0, 2, 1, 3, the low unpack yields the keys of slots 0-3 and the high one those of 4-7.
         const __m256i e = _mm256_permute4x64_epi64(entry, 0xD8), c = _mm256_permute4x64_epi64(child, 0xD8);
@@ -241,11 +263,12 @@ private:
         return uint64_t{bits} << 32 | 0xFFFFFFFFu;
     }
 
-    // Pushes the children in `mask` (possibly none) in slot order, the highest on top, with no
-    // branch on their number: VPERMD gathers them to the front of one eight-word store.
-    static uint32_t* push_others(const BvhNode& node, unsigned mask, uint32_t* top) {
+    // Pushes the children of eight slots that `mask` names (possibly none) in slot order, the
+    // highest on top, with no branch on their number: VPERMD gathers them to the front of one
+    // eight-word store.
+    static uint32_t* push_others(const uint32_t* eight_children, unsigned mask, uint32_t* top) {
         const __m256i slots = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&kSlotsOf[mask])));
-        const __m256i children = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
+        const __m256i children = _mm256_load_si256(reinterpret_cast<const __m256i*>(eight_children));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(top), _mm256_permutevar8x32_epi32(children, slots));
         return top + std::popcount(mask);
     }
@@ -257,7 +280,7 @@ private:
         high = a ^ b ^ low;  // keys differ in their ChildRefs, so this is the other one
     }
 
-    // Three or more children (14% of the node visits of Sponza's diffuse rays, against 17% for
+    // Three or more children (on the eight-wide tree, 14% of the node visits of Sponza's diffuse rays, against 17% for
     // two and 39% for one): pushes them all, sorted so that the nearest is on top, and returns
     // the new top of the stack.
     static uint64_t* push_sorted(const uint64_t* keys, unsigned mask, uint64_t nearer, uint64_t farther,

@@ -1,4 +1,4 @@
-// The eight-wide nodes of a Bvh from the binary tree that SAH builds: which binary subtrees
+// The sixteen-wide nodes of a Bvh from the binary tree that SAH builds: which binary subtrees
 // become wide nodes and which become leaves, so that the SAH cost of the wide tree is least. A
 // dynamic programme over the binary tree (after Ylitie, Karras and Laine, "Efficient incoherent
 // ray traversal on GPUs through compressed wide BVHs", HPG 2017). A wide node costs its surface
@@ -16,8 +16,8 @@
 
 namespace glint {
 
-// A leaf's four-wide run test against a node's eight-wide box test: the leaves' share of the
-// cost. 1.5 against 1 and 2, timed (bench/BENCHMARKS.md, eleventh round).
+// A leaf's four-wide run test against a node's box tests: the leaves' share of the cost. 1.5
+// against 1 and 2, timed on the eight-wide tree (bench/BENCHMARKS.md, eleventh round).
 inline constexpr float kLeafCost = 1.5f;
 
 // The root's children fill the first node; `binary` is not empty.

@@ -1,4 +1,4 @@
-// The slab test of one ray against the eight child boxes of a BVH node at once, in AVX single
+// The slab test of one ray against eight boxes (half a BVH node's children) at once, in AVX single
 // precision, made conservative: it never rejects a box that the exact test with the double ray
 // would accept. Two implementations: RayBoxTest for every ray, and FusedRayBoxTest, a shorter
 // chain of dependent instructions, for the rays of a render (see there).
@@ -34,15 +34,16 @@
 
 namespace glint {
 
-inline constexpr int kBvhWidth = 8;
+// Boxes per test: one AVX register of floats.
+inline constexpr int kBoxLanes = 8;
 // Far distances are scaled by this: above 1 + 2·gamma(4), with room for its own rounding.
 inline constexpr float kFarPad = 1 + 0x1p-20f;
 
-// Eight child boxes in structure-of-arrays order: planes[2·axis] holds the eight lower bounds
-// along that axis, planes[2·axis + 1] the eight upper ones. An unused slot has lo = +inf and
-// hi = -inf, which no ray can enter.
+// Eight boxes in structure-of-arrays order: planes[2·axis] holds the eight lower bounds along
+// that axis, planes[2·axis + 1] the eight upper ones. An unused slot has lo = +inf and hi = -inf,
+// which no ray can enter.
 struct alignas(32) WideBox {
-    float planes[6][kBvhWidth];
+    float planes[6][kBoxLanes];
 
     bool used(int slot) const { return planes[0][slot] <= planes[1][slot]; }
     // A used slot's box: half its surface area, in double.
@@ -63,8 +64,8 @@ inline constexpr std::array<PlaneOffsets, 8> kPlaneOffsets = [] {
     for (int octant = 0; octant < 8; ++octant)
         for (int a = 0; a < 3; ++a) {
             const int flip = octant >> a & 1;
-            table[octant].near[a] = intptr_t{sizeof(float)} * kBvhWidth * (2 * a + flip);
-            table[octant].far[a] = intptr_t{sizeof(float)} * kBvhWidth * (2 * a + 1 - flip);
+            table[octant].near[a] = intptr_t{sizeof(float)} * kBoxLanes * (2 * a + flip);
+            table[octant].far[a] = intptr_t{sizeof(float)} * kBoxLanes * (2 * a + 1 - flip);
         }
     return table;
 }();

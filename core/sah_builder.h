@@ -1,5 +1,5 @@
 // The binary tree that binned SAH builds over primitive boxes (Wald, "On fast construction of
-// SAH-based bounding volume hierarchies", 2007). Bvh collapses it to eight-wide nodes
+// SAH-based bounding volume hierarchies", 2007). Bvh collapses it to sixteen-wide nodes
 // (bvh_collapse.h).
 #pragma once
 

@@ -149,7 +149,7 @@ TEST(Bvh, BoxTestNeverRejectsATightBoxAroundAPointOfTheRay) {
         if (i % 4 == 1) d[i % 3] = i % 8 == 1 ? 0.0 : -0.0;
         const Ray ray{o, d, i % 3 == 0 ? -kInfinity : 0.0, kInfinity};
         WideBox box;
-        for (int slot = 0; slot < kBvhWidth; ++slot) {
+        for (int slot = 0; slot < kBoxLanes; ++slot) {
             const double t = std::pow(10.0, rng.uniform() * 8 - 4) * scale;
             for (int a = 0; a < 3; ++a) {
                 // o + d·t in double is off the exact point by less than `error`.
@@ -207,7 +207,7 @@ TEST(Bvh, FusedBoxTestAgreesWithTheSlabTest) {
         const Ray ray{Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 20 - Vec3{10},
                       sample_uniform_sphere(rng.uniform(), rng.uniform()), i % 2 ? 0.0 : -0.0, 5 + 20 * rng.uniform()};
         WideBox box;
-        for (int slot = 0; slot < kBvhWidth; ++slot) {
+        for (int slot = 0; slot < kBoxLanes; ++slot) {
             const Vec3 near_ray = ray.o + ray.d * (rng.uniform() * 30 - 3);
             for (int a = 0; a < 3; ++a) {
                 const double lo = near_ray[a] + rng.uniform() * 2 - 1.5;
@@ -216,7 +216,7 @@ TEST(Bvh, FusedBoxTestAgreesWithTheSlabTest) {
             }
         }
         const __m256 tmax = _mm256_set1_ps(to_float_up(ray.tmax));
-        alignas(32) float slab_entry[kBvhWidth], fused_entry[kBvhWidth];
+        alignas(32) float slab_entry[kBoxLanes], fused_entry[kBoxLanes];
         __m256 e;
         const int slab = RayBoxTest(ray).hit(box, tmax, e);
         _mm256_store_ps(slab_entry, e);
@@ -226,7 +226,7 @@ TEST(Bvh, FusedBoxTestAgreesWithTheSlabTest) {
         const double steepest = std::min({std::fabs(ray.d.x), std::fabs(ray.d.y), std::fabs(ray.d.z)});
         const double hair = 1e-6 * (1 + max_component(abs(ray.o))) / steepest;
         const auto disagree = static_cast<unsigned>(slab ^ fused), both = static_cast<unsigned>(slab & fused);
-        for (int slot = 0; slot < kBvhWidth; ++slot) {
+        for (int slot = 0; slot < kBoxLanes; ++slot) {
             if (disagree >> slot & 1) {
                 const auto [lo, hi] = exact_slab(ray, box, slot);
                 EXPECT_LT(std::fabs(hi - lo), hair) << "ray " << i << " slot " << slot;
@@ -236,7 +236,7 @@ TEST(Bvh, FusedBoxTestAgreesWithTheSlabTest) {
             }
         }
         accepted += std::popcount(static_cast<unsigned>(slab));
-        rejected += kBvhWidth - std::popcount(static_cast<unsigned>(slab));
+        rejected += kBoxLanes - std::popcount(static_cast<unsigned>(slab));
     }
     EXPECT_GT(accepted, 5000);
     EXPECT_GT(rejected, 5000);
@@ -319,7 +319,7 @@ TEST(Bvh, TreeIsWellFormed) {
         std::vector<int> seen(bvh->tree_size(), 0), parents(bvh->nodes().size(), 0);
         for (const BvhNode& n : bvh->nodes())
             for (int slot = 0; slot < kBvhWidth; ++slot) {
-                const bool used = n.boxes.used(slot);
+                const bool used = n.used(slot);
                 if (!used) continue;
                 const uint32_t ref = n.child[slot], count = ChildRef::count(ref);
                 if (count > 0) {
@@ -332,10 +332,10 @@ TEST(Bvh, TreeIsWellFormed) {
                 const BvhNode& child = bvh->nodes()[index];
                 ++parents[index];
                 for (int c = 0; c < kBvhWidth; ++c) {
-                    if (!(child.boxes.planes[0][c] <= child.boxes.planes[1][c])) continue;
+                    if (!child.used(c)) continue;
                     for (int a = 0; a < 3; ++a) {
-                        EXPECT_GE(child.boxes.planes[2 * a][c], n.boxes.planes[2 * a][slot]);
-                        EXPECT_LE(child.boxes.planes[2 * a + 1][c], n.boxes.planes[2 * a + 1][slot]);
+                        EXPECT_GE(child.plane(2 * a, c), n.plane(2 * a, slot));
+                        EXPECT_LE(child.plane(2 * a + 1, c), n.plane(2 * a + 1, slot));
                     }
                 }
             }
@@ -355,8 +355,8 @@ TEST(Bvh, ChildrenAreStoredLeavesFirstThenLargestFirst) {
     const Geometry g(s.spheres, s.triangles);
     int mixed = 0;  // nodes holding both leaves and inner nodes
     for (const BvhNode& n : g.triangle_bvh().nodes()) {
-        const auto half_area = [&](int slot) { return n.boxes.half_area(slot); };
-        const auto used = [&](int slot) { return n.boxes.used(slot); };
+        const auto half_area = [&](int slot) { return n.half_area(slot); };
+        const auto used = [&](int slot) { return n.used(slot); };
         const auto leaf = [&](int slot) { return ChildRef::count(n.child[slot]) > 0; };
         mixed += leaf(0) && !leaf(kBvhWidth - 1) && used(kBvhWidth - 1);
         for (int slot = 1; slot < kBvhWidth; ++slot) {
@@ -373,39 +373,39 @@ TEST(Bvh, ChildrenAreStoredLeavesFirstThenLargestFirst) {
     EXPECT_GT(mixed, 0);
 }
 
-// A binary tree where opening the largest child first wastes a node. The root (half area 100)
-// holds A (50) with two leaves and B (60), a chain of inner nodes B, B2 .. B7 (60 down to 54)
-// with one leaf each and two under B7: ten leaves. Largest first opens B .. B6 (all larger than
-// A) until the root is full, leaving A and B7 as nodes of two leaves: three nodes, 204 of area.
-// The least is two nodes: the root holds a1, a2, b1 .. b5 and B6, whose node holds b6 .. b8
-// (100 + 55).
+// A binary tree where opening the largest child first wastes a node (W = kBvhWidth slots). The
+// root (half area 1000) holds A (500) with two leaves and B (600), a chain of inner nodes B1 ..
+// B(W-1) (600 down to 602 - W) with one leaf each and two under B(W-1): W + 2 leaves. Largest
+// first opens B1 .. B(W-2) (all larger than A) until the root is full, leaving A and B(W-1) as
+// nodes: three nodes. The least is two nodes: the root holds a1, a2, b1 .. b(W-3) and B(W-2),
+// whose node holds the last three leaves (1000 + 603 - W).
 TEST(Bvh, CollapseMakesTheNodesOfLeastArea) {
     const auto box = [](float area) { return FloatBox{{0, 0, 0}, {area, 1, 0}}; };  // half area: area
     const auto inner = [&](float area, uint32_t left) { return BinaryNode{box(area), left, 0}; };
     uint32_t position = 0;
     const auto leaf = [&] { return BinaryNode{box(1), position++, 1}; };
-    std::vector<BinaryNode> binary = {inner(100, 1), inner(50, 3), inner(60, 5), leaf(), leaf()};
-    // b1 .. b6 at 5 + 2k, and B2 .. B7 at 6 + 2k with children from 7 + 2k on.
-    for (int k = 0; k < 6; ++k) {
+    std::vector<BinaryNode> binary = {inner(1000, 1), inner(500, 3), inner(600, 5), leaf(), leaf()};
+    // b1 .. b(W-2) at 5 + 2k, and B2 .. B(W-1) at 6 + 2k with children from 7 + 2k on.
+    for (int k = 0; k < kBvhWidth - 2; ++k) {
         binary.push_back(leaf());
-        binary.push_back(inner(59.0f - float(k), static_cast<uint32_t>(binary.size()) + 1));
+        binary.push_back(inner(599.0f - float(k), static_cast<uint32_t>(binary.size()) + 1));
     }
-    binary.push_back(leaf());  // b7
-    binary.push_back(leaf());  // b8
-    ASSERT_EQ(binary.size(), 19u);
+    binary.push_back(leaf());  // b(W-1)
+    binary.push_back(leaf());  // bW
+    ASSERT_EQ(binary.size(), size_t(2 * kBvhWidth + 3));
 
     const std::vector<BvhNode> nodes = collapse_to_wide(binary);
     ASSERT_EQ(nodes.size(), 2u);
     const auto leaves = [](const BvhNode& n) {
         return std::count_if(std::begin(n.child), std::end(n.child), [](uint32_t c) { return ChildRef::count(c) > 0; });
     };
-    EXPECT_EQ(leaves(nodes[0]), 7);
+    EXPECT_EQ(leaves(nodes[0]), kBvhWidth - 1);
     EXPECT_EQ(leaves(nodes[1]), 3);
-    int inner_children = 0;  // B6 alone, of half area 55
+    int inner_children = 0;  // B(W-2) alone
     for (int slot = 0; slot < kBvhWidth; ++slot)
-        if (ChildRef::count(nodes[0].child[slot]) == 0 && nodes[0].boxes.used(slot)) {
+        if (ChildRef::count(nodes[0].child[slot]) == 0 && nodes[0].used(slot)) {
             ++inner_children;
-            EXPECT_EQ(nodes[0].boxes.planes[1][slot], 55.0f);
+            EXPECT_EQ(nodes[0].plane(1, slot), float(603 - kBvhWidth));
         }
     EXPECT_EQ(inner_children, 1);
 }
@@ -425,7 +425,7 @@ TEST(Bvh, CollapseMergesLeavesWhereThatCostsLess) {
     EXPECT_EQ(root.child[0], ChildRef::leaf(0, 2));
     EXPECT_EQ(root.child[1], ChildRef::leaf(2, 1));
     EXPECT_EQ(root.child[2], ChildRef::leaf(3, 1));
-    for (int slot = 3; slot < kBvhWidth; ++slot) EXPECT_FALSE(root.boxes.used(slot));
+    for (int slot = 3; slot < kBvhWidth; ++slot) EXPECT_FALSE(root.used(slot));
 }
 
 // Long triangles across the scene, in every orientation, among small ones: spatial splits cut
