@@ -90,27 +90,39 @@ private:
     // the eight-wide tree this pass went from 5.3% of Sponza's binned build to 3.9%, against
     // scalar loops over i and k). Each choice starts from a valid one (k = 1), so that boxes
     // reaching infinity, whose costs are infinite or NaN, still give a tree; ties keep the lower k.
+    // A subtree fills at most a slot a primitive, so its costs stop falling there: a k beyond the
+    // left one's primitives, or an i beyond both's, chooses nothing new, and is not computed.
     static void share_slots(const Plan& left, const Plan& right, std::array<float, kBvhWidth>& cost,
                             std::array<uint8_t, kBvhWidth>& left_slots) {
         constexpr float inf = std::numeric_limits<float>::infinity();
         alignas(32) float padded[2 * kBvhWidth];
-        for (int i = 0; i < kBvhWidth; ++i) padded[i] = inf;
+        std::fill(padded, padded + kBvhWidth, inf);
         std::copy(right.cost.begin(), right.cost.end(), padded + kBvhWidth);
+        const auto sums = [&](int k, int half) {
+            return _mm256_add_ps(_mm256_set1_ps(left.cost[k - 1]), _mm256_loadu_ps(padded + kBvhWidth - k + half * kBoxLanes));
+        };
+        const int last_k = static_cast<int>(std::min<uint32_t>(kBvhWidth - 1, left.prims));
+        // One half's lanes over k = 2 .. last: each half in registers of its own.
+        const auto share = [&](int half, int last, __m256& best, __m256i& best_left) {
+            best = sums(1, half);
+            best_left = _mm256_set1_epi32(1);
+            for (int k = 2; k <= last; ++k) {
+                const __m256 c = sums(k, half);
+                const __m256 better = _mm256_cmp_ps(c, best, _CMP_LT_OQ);
+                best = _mm256_blendv_ps(best, c, better);
+                best_left = _mm256_blendv_epi8(best_left, _mm256_set1_epi32(k), _mm256_castps_si256(better));
+            }
+        };
         __m256 best[2];
         __m256i best_left[2];
-        for (int k = 1; k < kBvhWidth; ++k) {
-            const __m256 left_cost = _mm256_set1_ps(left.cost[k - 1]);
-            for (int h = 0; h < 2; ++h) {
-                const __m256 c = _mm256_add_ps(left_cost, _mm256_loadu_ps(padded + kBvhWidth - k + h * kBoxLanes));
-                if (k == 1) {
-                    best[h] = c;
-                    best_left[h] = _mm256_set1_epi32(1);
-                    continue;
-                }
-                const __m256 better = _mm256_cmp_ps(c, best[h], _CMP_LT_OQ);
-                best[h] = _mm256_blendv_ps(best[h], c, better);
-                best_left[h] = _mm256_blendv_epi8(best_left[h], _mm256_set1_epi32(k), _mm256_castps_si256(better));
-            }
+        // Lanes below k are +inf: from k = 8 on, only the upper half can change.
+        share(0, std::min(last_k, kBoxLanes - 1), best[0], best_left[0]);
+        if (left.prims + right.prims > kBoxLanes) {
+            share(1, last_k, best[1], best_left[1]);
+        } else {  // the upper half as the lower's last lane
+            const __m256i last = _mm256_set1_epi32(kBoxLanes - 1);
+            best[1] = _mm256_permutevar8x32_ps(best[0], last);
+            best_left[1] = _mm256_permutevar8x32_epi32(best_left[0], last);
         }
         alignas(32) int32_t shares[kBvhWidth];
         for (int h = 0; h < 2; ++h) {
