@@ -202,13 +202,15 @@ private:
 
     // The bottom of the traversal stack, so that popping needs no emptiness test: a ChildRef
     // that reads as a leaf, which the leaf branch checks for (2.3 leaf visits a Sponza diffuse
-    // ray against 7.7 pops on the eight-wide tree), but that no real leaf can be, as its first position is out of range.
+    // ray against 7.7 pops on the eight-wide tree), but that no real leaf can be, as its first
+    // position is out of range.
     static constexpr uint32_t kStackEnd = ~0u;
     static_assert(ChildRef::first(kStackEnd) >= ChildRef::kMaxPrimitives && ChildRef::count(kStackEnd) != 0);
 
     // The node's sixteen boxes, tested as two independent eight: bit s of the result for slot s.
     template <typename BoxTest>
-    [[gnu::always_inline]] static unsigned hits(const BoxTest& box, const BvhNode& node, __m256 tmax, __m256 entries[2]) {
+    [[gnu::always_inline]] static unsigned hits(const BoxTest& box, const BvhNode& node, __m256 tmax,
+                                                __m256 entries[2]) {
         const auto low = static_cast<unsigned>(box.hit(node.boxes[0], tmax, entries[0]));
         const auto high = static_cast<unsigned>(box.hit(node.boxes[1], tmax, entries[1]));
         return low | high << kBoxLanes;
@@ -280,9 +282,9 @@ private:
         high = a ^ b ^ low;  // keys differ in their ChildRefs, so this is the other one
     }
 
-    // Three or more children (on the eight-wide tree, 14% of the node visits of Sponza's diffuse rays, against 17% for
-    // two and 39% for one): pushes them all, sorted so that the nearest is on top, and returns
-    // the new top of the stack.
+    // Three or more children (on the eight-wide tree, 14% of the node visits of Sponza's diffuse
+    // rays, against 17% for two and 39% for one): pushes them all, sorted so that the nearest is
+    // on top, and returns the new top of the stack.
     static uint64_t* push_sorted(const uint64_t* keys, unsigned mask, uint64_t nearer, uint64_t farther,
                                  uint64_t* top) {
         // The third, most often the last, joins the sorted pair by selects: no mispredicted exit

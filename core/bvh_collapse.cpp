@@ -99,7 +99,8 @@ private:
         std::fill(padded, padded + kBvhWidth, inf);
         std::copy(right.cost.begin(), right.cost.end(), padded + kBvhWidth);
         const auto sums = [&](int k, int half) {
-            return _mm256_add_ps(_mm256_set1_ps(left.cost[k - 1]), _mm256_loadu_ps(padded + kBvhWidth - k + half * kBoxLanes));
+            const __m256 shifted = _mm256_loadu_ps(padded + kBvhWidth - k + half * kBoxLanes);
+            return _mm256_add_ps(_mm256_set1_ps(left.cost[k - 1]), shifted);
         };
         const int last_k = static_cast<int>(std::min<uint32_t>(kBvhWidth - 1, left.prims));
         // One half's lanes over k = 2 .. last: each half in registers of its own.
