@@ -13,6 +13,7 @@
 #include "camera.h"
 #include "light_tracer.h"
 #include "rng.h"
+#include "sampler.h"
 #include "scene.h"
 
 namespace glint {
@@ -28,14 +29,6 @@ enum class DirectView {
 
 // The shape of a camera path so far, for handing caustic paths to light tracing.
 enum class PathShape { camera, diffuse, caustic, other };  // caustic: one diffuse, then specular+
-
-// Random numbers for the first diffuse vertex of a camera path, drawn from scrambled Sobol'
-// points so that they are stratified over a pixel's samples (see RenderJob::sample): the light
-// sample there and the direction of the bounce from it.
-struct FirstVertexSamples {
-    double light[2];
-    double bounce[2];
-};
 
 class PathTracer {
 public:

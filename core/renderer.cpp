@@ -6,7 +6,6 @@
 #include <string>
 
 #include "sampling.h"
-#include "sobol.h"
 
 namespace glint {
 
@@ -36,15 +35,9 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
         throw std::invalid_argument("the first sample must be a multiple of " + std::to_string(round));
 }
 
-Ray RenderJob::camera_ray(int x, int y, uint32_t index, uint32_t point, uint64_t key, Rng& rng) const {
-    double u1, u2;
-    if (settings_.sampler == Sampler::sobol) {
-        sobol_2d(point, key, u1, u2);
-    } else {
-        u1 = rng.uniform();
-        u2 = rng.uniform();
-    }
+Ray RenderJob::camera_ray(int x, int y, uint32_t index, const double* film, Rng& rng) const {
     const uint32_t sub = index % 4;  // smallpt's subpixel (sx, sy) = (sub mod 2, sub / 2)
+    const double u1 = film ? film[0] : rng.uniform(), u2 = film ? film[1] : rng.uniform();
     const double fx = x + filter_offset(settings_.filter, sub & 1, u1);
     const double fy = settings_.height - 1 - y + filter_offset(settings_.filter, sub >> 1, u2);
     const double lens1 = rng.uniform(), lens2 = rng.uniform();
@@ -54,40 +47,31 @@ Ray RenderJob::camera_ray(int x, int y, uint32_t index, uint32_t point, uint64_t
 Rgb RenderJob::sample(int x, int y, uint32_t index) const {
     const uint64_t pixel = uint64_t(y) * settings_.width + x;
     Rng rng(settings_.seed, pixel, index);
-    // The film position from a scrambled Sobol' sequence per pixel and subpixel: stratified over
-    // the pixel, which is what the light's edge (most of the error on smallpt's box) needs.
-    // The first diffuse vertex's light sample and bounce get two more such sequences, each
-    // scrambled with its own key and stratified over all the pixel's samples (the light seen
-    // from a subpixel's first vertex hardly differs from the others'). The independent sampler
-    // draws them all from the sample's stream, as smallpt does.
+    // The stratified sampler's numbers (sampler.h); the independent sampler draws them all from
+    // the sample's stream, as smallpt does.
     const bool sobol = settings_.sampler == Sampler::sobol;
-    const uint32_t round = samples_per_round(settings_.filter);
-    const uint64_t key = mix64(mix64(settings_.seed ^ 0xF11Du) ^ pixel);
-    FirstVertexSamples first;
-    if (sobol) {
-        sobol_2d(index, mix64(key ^ 0x11647u), first.light[0], first.light[1]);
-        sobol_2d(index, mix64(key ^ 0xB0u), first.bounce[0], first.bounce[1]);
-    }
-    const Ray ray = camera_ray(x, y, index, index / round, key ^ (index % round), rng);
+    const PixelSampler sampler(settings_.seed, pixel, samples_per_round(settings_.filter));
+    const StratifiedSample stratified = sobol ? sampler.sample(index) : StratifiedSample{};
+    const Ray ray = camera_ray(x, y, index, sobol ? stratified.film : nullptr, rng);
+    const FirstVertexSamples* first = sobol ? &stratified.first : nullptr;
     // One light path per camera sample, on its own stream keyed like the sample's; initialised
     // from trace()'s result in place, where assigning it copied its four vertices (~560 bytes).
     const LightPath light = scene_->light_tracing() ? [&] {
         Rng light_rng(settings_.seed, pixel, uint64_t(index) | (uint64_t(1) << 63));
         return light_tracer_.trace(light_rng);
     }() : LightPath{};
-    if (!direct_view_.splits(x, y)) return tracer_.radiance(ray, rng, light, sobol ? &first : nullptr);
-    return tracer_.radiance(ray, rng, light, sobol ? &first : nullptr, DirectView::left_out) +
-           direct_view(x, y, index, key, rng);
+    if (!direct_view_.splits(x, y)) return tracer_.radiance(ray, rng, light, first);
+    return tracer_.radiance(ray, rng, light, first, DirectView::left_out) + direct_view(x, y, index, sampler, rng);
 }
 
-Rgb RenderJob::direct_view(int x, int y, uint32_t index, uint64_t key, Rng& rng) const {
-    // Film positions from one more scrambled Sobol' sequence per subpixel, rays() points per
-    // round, so that all of a subpixel's rays are stratified together.
-    const uint32_t round = samples_per_round(settings_.filter), rays = uint32_t(direct_view_.rays());
-    const uint64_t subpixel_key = mix64(key ^ 0xD1EC7u) ^ (index % round);
+Rgb RenderJob::direct_view(int x, int y, uint32_t index, const PixelSampler& sampler, Rng& rng) const {
+    const uint32_t rays = uint32_t(direct_view_.rays());
+    const bool sobol = settings_.sampler == Sampler::sobol;
     Rgb sum{0};
     for (uint32_t k = 0; k < rays; ++k) {
-        const Ray ray = camera_ray(x, y, index, index / round * rays + k, subpixel_key, rng);
+        double film[2];
+        if (sobol) sampler.direct_view_film(index, rays, k, film);
+        const Ray ray = camera_ray(x, y, index, sobol ? film : nullptr, rng);
         sum += tracer_.radiance(ray, rng, kNoLightPath, nullptr, DirectView::alone);
     }
     return sum / double(rays);

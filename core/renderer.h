@@ -15,14 +15,10 @@
 #include "image_io.h"
 #include "integrator.h"
 #include "light_tracer.h"
+#include "sampler.h"
 #include "thread_pool.h"
 
 namespace glint {
-
-// Where a camera sample's film position, and its first diffuse vertex's light sample and bounce,
-// come from: scrambled Sobol' points, stratified over the pixel's samples, or independent
-// random numbers, as smallpt draws them (for comparing with smallpt's estimator).
-enum class Sampler { sobol, independent };
 
 struct RenderSettings {
     int width = 1024, height = 768;
@@ -79,11 +75,10 @@ private:
 
     Rgb sample(int x, int y, uint32_t index) const;
     // The direct view of pixel (x, y) for sample `index` from direct_view_.rays() camera rays.
-    Rgb direct_view(int x, int y, uint32_t index, uint64_t key, Rng& rng) const;
-    // A camera ray for sample `index` of pixel (x, y), through the film position that point
-    // `point` of the scrambled Sobol' sequence `key` picks in its subpixel (with the
-    // independent sampler, two numbers from rng do), and a lens point from rng.
-    Ray camera_ray(int x, int y, uint32_t index, uint32_t point, uint64_t key, Rng& rng) const;
+    Rgb direct_view(int x, int y, uint32_t index, const PixelSampler& sampler, Rng& rng) const;
+    // A camera ray for sample `index` of pixel (x, y), through the film position `film` picks in
+    // the sample's subpixel (nullptr: two numbers from rng pick it), and a lens point from rng.
+    Ray camera_ray(int x, int y, uint32_t index, const double* film, Rng& rng) const;
     bool render_tile(size_t tile, uint32_t first, uint32_t last);
     bool should_stop() const;
     uint32_t next_pass_size(uint32_t previous) const;

@@ -1,0 +1,98 @@
+// Where a camera sample's stratified numbers come from: each stratified dimension (the film
+// position, the first diffuse vertex's light sample and its bounce, the direct view's film
+// positions) is a two-dimensional scrambled Sobol' sequence of its own, read at a shuffled index.
+//
+// Why shuffled. Sobol's first two dimensions form a (0,2)-sequence, the best-stratified 2D points
+// there are, but only two of them exist; the higher Sobol' dimensions are stratified jointly only
+// with some partners and not uniformly well. The usual answer is padding (Kollig and Keller
+// 2002; pbrt-v4's PaddedSobolSampler): every 2D dimension reuses the same good 2D sequence, each
+// with its own scramble. Scrambling the points is not enough on its own: a nested (Owen)
+// scramble is a fixed one-to-one map of the value it scrambles, so two dimensions that read the
+// same index of the same sequence are exact functions of each other within a pixel (the light
+// sample a function of the film position), and wherever the integrand depends on both at once
+// (an edge lit by an area light, a shadow's edge) the estimate converges, within one render, to
+// a value that depends on the seed: unbiased over seeds, never consistent, and invisible to the
+// error estimate. What decouples them is a different order per dimension: dimension d reads
+// point shuffle_d(i) for sample i, a permutation keyed by (seed, pixel, dimension).
+//
+// Which permutation. pbrt-v4 permutes [0, spp) at random, which needs the sample count up front.
+// glint's jobs stop at a target error or a time limit and are split into sample ranges over
+// machines, so the order must not depend on the count. A nested scramble of the index itself
+// (Burley 2020, "Practical Hash-based Owen Scrambling", §4: each bit of the index flipped by a
+// hash of the bits above it) maps every aligned block of 2^m indices onto an aligned block of
+// 2^m indices. The first 2^m samples of a dimension are therefore 2^m consecutive points of the
+// Sobol' sequence, starting at a multiple of 2^m: a (0,m,2)-net, as well stratified as the
+// sequence's own prefix, for every m at once. Two dimensions' orders are independent nested
+// scrambles, so their pairing is one too: within a pixel each dimension is stratified on its own
+// and independent of the others (tests/test_sampler.cpp checks both, with χ² tests over many
+// pixels and sample counts). Everything is a function of (seed, pixel, sample index), so an image
+// is still bit-identical for any thread count, split or resume.
+#pragma once
+
+#include <cstdint>
+
+#include "sobol.h"
+
+namespace glint {
+
+// sobol: the shuffled, scrambled Sobol' dimensions above. independent: every number
+// from the sample's own random stream, as smallpt draws them (for comparing with smallpt's
+// estimator, and the reference the tests measure the stratified sampler against).
+enum class Sampler { sobol, independent };
+
+// Changes whenever the points a sampler gives a (seed, pixel, sample) change, so that a film
+// rendered with other points is never merged with or resumed by this version's (fingerprint.h).
+inline constexpr uint32_t kSamplerVersion = 2;
+
+// The numbers a camera path's first diffuse vertex takes from the sampler instead of its random
+// stream: the light sample there and the direction of the bounce from it.
+struct FirstVertexSamples {
+    double light[2];
+    double bounce[2];
+};
+
+// A camera sample's stratified numbers: where in its subpixel the ray goes, and its first
+// diffuse vertex's.
+struct StratifiedSample {
+    double film[2];
+    FirstVertexSamples first;
+};
+
+class PixelSampler {
+public:
+    // `round`: the samples that cover the pixel's subpixels once (samples_per_round of the filter);
+    // sample i goes to subpixel i mod round.
+    PixelSampler(uint64_t seed, uint64_t pixel, uint32_t round)
+        : key_(mix64(mix64(seed ^ 0xF11Du) ^ pixel)), round_(round) {}
+
+    // The film position is stratified over its subpixel's samples (a sequence per subpixel); the
+    // first vertex's numbers over all the pixel's samples (the light seen from one subpixel's
+    // first vertex hardly differs from another's).
+    StratifiedSample sample(uint32_t index) const {
+        StratifiedSample s;
+        point(Dimension::film, index % round_, index / round_, s.film);
+        point(Dimension::light, 0, index, s.first.light);
+        point(Dimension::bounce, 0, index, s.first.bounce);
+        return s;
+    }
+    // The film position of ray k of `rays` that sample `index` spends on the direct view
+    // (direct_view.h): all of a subpixel's such rays are stratified together.
+    void direct_view_film(uint32_t index, uint32_t rays, uint32_t k, double film[2]) const {
+        point(Dimension::direct_view, index % round_, index / round_ * rays + k, film);
+    }
+
+private:
+    enum class Dimension : uint64_t { film = 1, light = 2, bounce = 3, direct_view = 4 };
+    static constexpr uint64_t kShuffle = 0x5EEDu;  // keys the order apart from the scramble
+
+    // Point `index` of dimension `dimension`'s sequence number `stream`, in the dimension's order.
+    void point(Dimension dimension, uint32_t stream, uint32_t index, double u[2]) const {
+        const uint64_t key = mix64(key_ ^ (uint64_t(dimension) << 56) ^ stream);
+        sobol_2d(owen_scramble(index, mix64(key ^ kShuffle)), key, u[0], u[1]);
+    }
+
+    uint64_t key_;
+    uint32_t round_;
+};
+
+}  // namespace glint
