@@ -62,20 +62,22 @@ Image Film::mean() const {
     return image;
 }
 
-// With r rounds of k samples, round sums S and round means S/k: the rounds' sample variance is
-// (ΣS² − (ΣS)²/r) / (k²·(r − 1)), and the pixel's mean, the mean of the round means, has that
-// divided by r.
+// The halves' means m0 = S0/n0 and m1 = S1/n1 are independent, with variances V/n0 and V/n1
+// for some V (each half is a stratified replicate of the same points, dropped rounds aside).
+// The pixel's mean (S0 + S1)/n has variance V/n, and E[(m0 − m1)²] = V·n/(n0·n1), so
+// (m0 − m1)²·n0·n1/n² estimates it without bias: (m0 − m1)²/4 for equal halves.
+double Film::camera_variance(const PixelSums& px, int c) {
+    const double n = double(px.count), n0 = double(px.half_count), n1 = n - n0;
+    if (n0 == 0 || n1 == 0) return kInfinity;  // no variance without both halves
+    const double d = px.half_sum[c] / n0 - (px.sum[c] - px.half_sum[c]) / n1;
+    return d * d * n0 * n1 / (n * n);
+}
+
 double Film::error_estimate() const {
     double total = 0;
     const double spp = samples_per_pixel();
-    for (const PixelSums& px : pixels_) {
-        if (px.rounds < 2) return kInfinity;  // no variance without two rounds
-        const double r = double(px.rounds), k = double(px.count) / r;
-        for (int c = 0; c < 3; ++c) {
-            const double spread = std::max(0.0, px.round_sq[c] - px.sum[c] * px.sum[c] / r);
-            total += spread / (k * k * (r - 1) * r) + splat_variance(px, c, spp);
-        }
-    }
+    for (const PixelSums& px : pixels_)
+        for (int c = 0; c < 3; ++c) total += camera_variance(px, c) + splat_variance(px, c, spp);
     return std::sqrt(total / (3.0 * double(pixels_.size())));
 }
 
@@ -84,9 +86,9 @@ void Film::merge(const Film& other) {
         PixelSums& px = pixels_[i];
         const PixelSums& o = other.pixels_[i];
         px.sum += o.sum;
-        px.round_sq += o.round_sq;
+        px.half_sum += o.half_sum;
         px.count += o.count;
-        px.rounds += o.rounds;
+        px.half_count += o.half_count;
         px.dropped += o.dropped;
         for (int c = 0; c < 3; ++c) {
             px.splat[c] += o.splat[c];

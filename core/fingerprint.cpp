@@ -32,7 +32,6 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
     h.value(settings.height);
     h.value(settings.filter);
     h.value(settings.sampler);
-    h.value(kSamplerVersion);
     h.value(settings.seed);
     return h.digest();
 }

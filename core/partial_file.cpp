@@ -12,8 +12,8 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "partial files are little-endian");
 constexpr char kMagic[8] = {'G', 'L', 'N', 'T', 'P', 'A', 'R', 'T'};
-constexpr uint32_t kVersion = 3;
-constexpr size_t kHeader = 40, kPixel = 128, kTrailer = 8;
+constexpr uint32_t kVersion = 4;
+constexpr size_t kHeader = 44, kPixel = 128, kTrailer = 8;
 
 class Writer {
 public:
@@ -47,15 +47,17 @@ uint64_t checksum(const uint8_t* data, size_t size) {
     return h.digest();
 }
 
-// Version 2 kept each pixel's sum of its samples' squares where version 3 keeps its rounds'
-// (120 bytes a pixel against 128). Its samples are read as rounds of one: the image is the same,
-// and the error estimate is the per-sample one that version wrote it with (an overestimate, see
-// film.h), so that nothing an older glint rendered is lost by an upgrade.
-constexpr uint32_t kPerSampleVersion = 2;
-constexpr size_t kPerSamplePixel = 120;
+// Versions 2 and 3 came before the sampler's two replicates (sampler version 1): they kept each
+// pixel's sum of its samples' squares (version 2, 120 bytes a pixel) or of its rounds' sums and
+// its round count (version 3, 128 bytes), and no sampler version (a 40-byte header). They are
+// read without halves, so the image is the same and the error estimate unknown (infinite), and
+// such a film can be shown but not resumed or merged with a newer one: nothing an older glint
+// rendered is lost by an upgrade.
+constexpr uint32_t kPerSampleVersion = 2, kRoundVersion = 3, kOldSamplerVersion = 1;
+constexpr size_t kOldHeader = 40, kPerSamplePixel = 120;
 
 size_t pixel_size(uint32_t version) {
-    if (version == kVersion) return kPixel;
+    if (version == kVersion || version == kRoundVersion) return kPixel;
     if (version == kPerSampleVersion) return kPerSamplePixel;
     throw PartialError("unsupported partial file version " + std::to_string(version));
 }
@@ -76,12 +78,13 @@ std::vector<uint8_t> encode_partial(const Partial& p) {
     w.put(p.first_sample);
     w.put(p.end_sample);
     w.put(uint32_t(p.encoding == Encoding::srgb ? 1 : 0));
+    w.put(p.sampler_version);
     w.put(p.fingerprint);
     for (const PixelSums& px : p.film.pixels()) {
         for (int c = 0; c < 3; ++c) w.put(px.sum[c]);
-        for (int c = 0; c < 3; ++c) w.put(px.round_sq[c]);
+        for (int c = 0; c < 3; ++c) w.put(px.half_sum[c]);
         w.put(px.count);
-        w.put(px.rounds);
+        w.put(px.half_count);
         w.put(px.dropped);
         for (int c = 0; c < 3; ++c) w.put(px.splat[size_t(c)]);
         for (int c = 0; c < 3; ++c) w.put(px.splat_sq[size_t(c)]);
@@ -94,7 +97,7 @@ std::vector<uint8_t> encode_partial(const Partial& p) {
 uint64_t partial_file_size(int width, int height) { return kHeader + kPixel * uint64_t(width) * uint64_t(height) + kTrailer; }
 
 Partial decode_partial(const std::vector<uint8_t>& bytes) {
-    if (bytes.size() < kHeader + kTrailer || std::memcmp(bytes.data(), kMagic, 8) != 0)
+    if (bytes.size() < kOldHeader + kTrailer || std::memcmp(bytes.data(), kMagic, 8) != 0)
         throw PartialError("not a glint partial file");
     uint64_t stored;
     std::memcpy(&stored, &bytes[bytes.size() - kTrailer], kTrailer);
@@ -103,10 +106,11 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
     Reader r(bytes);
     r.get<uint64_t>();  // magic
     const auto version = r.get<uint32_t>();
-    const size_t pixel_bytes = pixel_size(version);
+    const size_t pixel_bytes = pixel_size(version), header = version == kVersion ? kHeader : kOldHeader;
+    if (bytes.size() < header + kTrailer) throw PartialError("size does not match the header");
     const auto width = r.get<uint32_t>(), height = r.get<uint32_t>();
     // Divides rather than multiplies: 64·W·H overflows 64 bits for W = H = 2^31.
-    const size_t body = bytes.size() - kHeader - kTrailer, pixels = body / pixel_bytes;
+    const size_t body = bytes.size() - header - kTrailer, pixels = body / pixel_bytes;
     if (width == 0 || height == 0 || width > uint32_t(INT32_MAX) || body % pixel_bytes != 0 || pixels % width != 0 ||
         pixels / width != height)
         throw PartialError("size does not match the header");
@@ -117,13 +121,19 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
     const auto encoding = r.get<uint32_t>();
     if (encoding > 1) throw PartialError("unknown PNG encoding " + std::to_string(encoding) + " (0 gamma 2.2, 1 sRGB)");
     p.encoding = encoding == 1 ? Encoding::srgb : Encoding::gamma22;
+    p.sampler_version = version == kVersion ? r.get<uint32_t>() : kOldSamplerVersion;
     p.fingerprint = r.get<uint64_t>();
     p.film = Film(int(width), int(height));
     for (PixelSums& px : p.film.pixels()) {
         for (int c = 0; c < 3; ++c) px.sum[c] = r.get<double>();
-        for (int c = 0; c < 3; ++c) px.round_sq[c] = r.get<double>();
+        Rgb second;  // the first half's sums; in older versions, sums of squares
+        for (int c = 0; c < 3; ++c) second[c] = r.get<double>();
         px.count = r.get<uint64_t>();
-        px.rounds = version == kPerSampleVersion ? px.count : r.get<uint64_t>();
+        const uint64_t fourth = version == kPerSampleVersion ? 0 : r.get<uint64_t>();  // half's or rounds' count
+        if (version == kVersion) {
+            px.half_sum = second;
+            px.half_count = fourth;
+        }
         px.dropped = r.get<uint64_t>();
         for (int c = 0; c < 3; ++c) px.splat[size_t(c)] = r.get<int64_t>();
         for (int c = 0; c < 3; ++c) px.splat_sq[size_t(c)] = r.get<int64_t>();
@@ -139,6 +149,9 @@ Partial merge_partials(std::vector<Partial> parts) {
     for (size_t i = 1; i < parts.size(); ++i) {
         const Partial& p = parts[i];
         if (p.fingerprint != merged.fingerprint) throw PartialError("part " + range(p) + " is from another scene or settings");
+        if (p.sampler_version != merged.sampler_version)
+            throw PartialError("part " + range(p) + " was rendered by another version of glint's sampler (" +
+                               std::to_string(p.sampler_version) + ", not " + std::to_string(merged.sampler_version) + ")");
         if (p.film.width() != merged.film.width() || p.film.height() != merged.film.height())
             throw PartialError("part " + range(p) + " has another image size");
         if (p.first_sample < merged.end_sample)

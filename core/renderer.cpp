@@ -90,7 +90,7 @@ bool RenderJob::render_tile(size_t tile, uint32_t first, uint32_t last) {
         for (int x = x0; x < x1; ++x)
             for (uint32_t s = first; s < last; s += round) {
                 for (uint32_t i = 0; i < round; ++i) values[i] = sample(x, y, s + i);
-                film_.add_round(x, y, std::span(values.data(), round));
+                film_.add_round(x, y, std::span(values.data(), round), first_replicate(s, round));
             }
     return true;
 }

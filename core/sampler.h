@@ -41,7 +41,8 @@ namespace glint {
 enum class Sampler { sobol, independent };
 
 // Changes whenever the points a sampler gives a (seed, pixel, sample) change, so that a film
-// rendered with other points is never merged with or resumed by this version's (fingerprint.h).
+// rendered with other points is never merged with or resumed by this version's: partial files
+// record it (partial_file.h).
 inline constexpr uint32_t kSamplerVersion = 2;
 
 // The numbers a camera path's first diffuse vertex takes from the sampler instead of its random
@@ -58,6 +59,10 @@ struct StratifiedSample {
     FirstVertexSamples first;
 };
 
+// Which of a pixel's two replicates sample `index` draws from: the even rounds the first, the
+// odd rounds the second (`round`: samples_per_round of the filter).
+inline bool first_replicate(uint32_t index, uint32_t round) { return (index / round) % 2 == 0; }
+
 class PixelSampler {
 public:
     // `round`: the samples that cover the pixel's subpixels once (samples_per_round of the filter);
@@ -67,23 +72,36 @@ public:
 
     // The film position is stratified over its subpixel's samples (a sequence per subpixel); the
     // first vertex's numbers over all the pixel's samples (the light seen from one subpixel's
-    // first vertex hardly differs from another's).
+    // first vertex hardly differs from another's). Each of the two replicates has sequences of
+    // its own, and its rounds read them as if the other's did not exist.
     StratifiedSample sample(uint32_t index) const {
+        const Position at = position(index);
         StratifiedSample s;
-        point(Dimension::film, index % round_, index / round_, s.film);
-        point(Dimension::light, 0, index, s.first.light);
-        point(Dimension::bounce, 0, index, s.first.bounce);
+        point(Dimension::film, at.subpixel_stream, at.round, s.film);
+        point(Dimension::light, at.pixel_stream, at.round * round_ + at.subpixel, s.first.light);
+        point(Dimension::bounce, at.pixel_stream, at.round * round_ + at.subpixel, s.first.bounce);
         return s;
     }
     // The film position of ray k of `rays` that sample `index` spends on the direct view
     // (direct_view.h): all of a subpixel's such rays are stratified together.
     void direct_view_film(uint32_t index, uint32_t rays, uint32_t k, double film[2]) const {
-        point(Dimension::direct_view, index % round_, index / round_ * rays + k, film);
+        const Position at = position(index);
+        point(Dimension::direct_view, at.subpixel_stream, at.round * rays + k, film);
     }
 
 private:
     enum class Dimension : uint64_t { film = 1, light = 2, bounce = 3, direct_view = 4 };
     static constexpr uint64_t kShuffle = 0x5EEDu;  // keys the order apart from the scramble
+
+    // Where sample `index` lies: its subpixel, its round within its replicate, and the streams
+    // of its replicate that cover the subpixel and the whole pixel.
+    struct Position {
+        uint32_t subpixel, round, subpixel_stream, pixel_stream;
+    };
+    Position position(uint32_t index) const {
+        const uint32_t subpixel = index % round_, replicate = first_replicate(index, round_) ? 0 : 1;
+        return {subpixel, index / round_ / 2, replicate << 8 | subpixel, replicate << 8 | 0xFF};
+    }
 
     // Point `index` of dimension `dimension`'s sequence number `stream`, in the dimension's order.
     void point(Dimension dimension, uint32_t stream, uint32_t index, double u[2]) const {

@@ -1,5 +1,5 @@
-// The film: sums, the error estimate's formula from whole rounds, and samples that are NaN or
-// infinite.
+// The film: sums, the error estimate's formula from the two halves of the rounds, and samples
+// that are NaN or infinite.
 #include <gtest/gtest.h>
 
 #include "film.h"
@@ -8,19 +8,22 @@
 namespace glint {
 namespace {
 
-void add_round(Film& film, int x, int y, const std::vector<Rgb>& samples) { film.add_round(x, y, samples); }
+void add_round(Film& film, int x, int y, const std::vector<Rgb>& samples, bool first_half = true) {
+    film.add_round(x, y, samples, first_half);
+}
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN(), kInf = std::numeric_limits<double>::infinity();
 
 TEST(Film, DropsAndCountsWholeRoundsWithANonFiniteSample) {
     Film film(2, 1);
     add_round(film, 0, 0, {Rgb{1}, Rgb{3}});
-    add_round(film, 0, 0, {Rgb{5}, Rgb{kNaN, 0, 0}});  // the 5 goes too: its round is incomplete
+    add_round(film, 0, 0, {Rgb{5}, Rgb{kNaN, 0, 0}}, false);  // the 5 goes too: its round is incomplete
     add_round(film, 0, 0, {Rgb{0, kInf, 0}, Rgb{7}});
     add_round(film, 1, 0, {Rgb{0, 0, -kInf}, Rgb{1}});
     EXPECT_EQ(film.dropped(), 6u);
     EXPECT_EQ(film.pixel(0, 0).count, 2u);
-    EXPECT_EQ(film.pixel(0, 0).rounds, 1u);
+    EXPECT_EQ(film.pixel(0, 0).half_count, 2u);
+    EXPECT_EQ(film.pixel(0, 0).half_sum, Rgb{4});
     EXPECT_EQ(film.samples_per_pixel(), 4.0);  // dropped samples were taken: light paths were traced
     const Image image = film.mean();
     EXPECT_EQ(image.at(0, 0), Rgb{2});
@@ -28,35 +31,47 @@ TEST(Film, DropsAndCountsWholeRoundsWithANonFiniteSample) {
     for (float v : image.rgb) EXPECT_TRUE(std::isfinite(v));
 }
 
-TEST(Film, ErrorEstimateIsTheStandardErrorOfThePixelMeanFromItsRounds) {
+TEST(Film, ErrorEstimateIsTheStandardErrorOfThePixelMeanFromItsHalves) {
     Film film(2, 1);
-    // Pixel 0: rounds {0, 4} and {0, 4}: the round means agree (2 and 2), so the mean has no
-    // error, although the samples spread (the spread of stratified samples within a round).
-    // Pixel 1: rounds {0, 2} and {2, 4}: round means 1 and 3, variance 2, of the mean 1.
-    // Average over 6 channel values of 0,0,0,1,1,1 = 0.5. (Per sample it would be 4/3 and 2/3.)
-    add_round(film, 0, 0, {Rgb{0}, Rgb{4}});
-    add_round(film, 0, 0, {Rgb{0}, Rgb{4}});
-    add_round(film, 1, 0, {Rgb{0}, Rgb{2}});
-    add_round(film, 1, 0, {Rgb{2}, Rgb{4}});
+    // Pixel 0: halves {0, 4} and {0, 4}: their means agree (2 and 2), so the mean has no error,
+    // although the samples spread (the spread of stratified samples within a round). Pixel 1:
+    // halves {0, 2} and {2, 4}: means 1 and 3, the pixel's mean (1 + 3)/2 has variance
+    // (3 - 1)²/4 = 1. Average over 6 channel values of 0,0,0,1,1,1 = 0.5.
+    add_round(film, 0, 0, {Rgb{0}, Rgb{4}}, true);
+    add_round(film, 0, 0, {Rgb{0}, Rgb{4}}, false);
+    add_round(film, 1, 0, {Rgb{0}, Rgb{2}}, true);
+    add_round(film, 1, 0, {Rgb{2}, Rgb{4}}, false);
     EXPECT_DOUBLE_EQ(film.error_estimate(), std::sqrt(0.5));
     // Merged from films of one round each, the film is the same.
     Film first(2, 1), second(2, 1);
-    add_round(first, 0, 0, {Rgb{0}, Rgb{4}});
-    add_round(second, 0, 0, {Rgb{0}, Rgb{4}});
-    add_round(first, 1, 0, {Rgb{0}, Rgb{2}});
-    add_round(second, 1, 0, {Rgb{2}, Rgb{4}});
+    add_round(first, 0, 0, {Rgb{0}, Rgb{4}}, true);
+    add_round(second, 0, 0, {Rgb{0}, Rgb{4}}, false);
+    add_round(first, 1, 0, {Rgb{0}, Rgb{2}}, true);
+    add_round(second, 1, 0, {Rgb{2}, Rgb{4}}, false);
     first.merge(second);
     EXPECT_DOUBLE_EQ(first.error_estimate(), std::sqrt(0.5));
 }
 
-TEST(Film, ErrorEstimateIsInfiniteUntilEveryPixelHasTwoRounds) {
+// A dropped round leaves the halves unequal: n0 = 2 samples of mean 1 and n1 = 4 of mean 3. The
+// mean's variance is V/6 where the halves' are V/2 and V/4, so E[(m0 - m1)²] = 3V/4 and the
+// estimate is (m0 - m1)²·(2/9) = 8/9.
+TEST(Film, ErrorEstimateWeighsUnequalHalves) {
+    Film film(1, 1);
+    add_round(film, 0, 0, {Rgb{1}, Rgb{1}}, true);
+    add_round(film, 0, 0, {Rgb{3}, Rgb{3}}, false);
+    add_round(film, 0, 0, {Rgb{3}, Rgb{3}}, false);
+    EXPECT_DOUBLE_EQ(film.error_estimate(), std::sqrt(8.0 / 9));
+}
+
+TEST(Film, ErrorEstimateIsInfiniteUntilEveryPixelHasBothHalves) {
     Film film(2, 1);
-    add_round(film, 0, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}});
-    add_round(film, 1, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}});
-    EXPECT_TRUE(std::isinf(film.error_estimate()));  // four samples, but one round
-    add_round(film, 0, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}});
+    add_round(film, 0, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}}, true);
+    add_round(film, 1, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}}, true);
+    add_round(film, 1, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}}, true);
+    EXPECT_TRUE(std::isinf(film.error_estimate()));  // two rounds, but of one half
+    add_round(film, 0, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}}, false);
     EXPECT_TRUE(std::isinf(film.error_estimate()));
-    add_round(film, 1, 0, {Rgb{1}, Rgb{2}, Rgb{3}, Rgb{4}});
+    add_round(film, 1, 0, {Rgb{2.5}, Rgb{2.5}, Rgb{2.5}, Rgb{2.5}}, false);
     EXPECT_EQ(film.error_estimate(), 0);
 }
 

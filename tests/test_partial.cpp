@@ -45,11 +45,11 @@ TEST(Partial, ThreePartsMergeIntoTheWholeRender) {
     for (size_t i = 0; i < merged.film.pixels().size(); ++i) {
         const PixelSums &a = whole->film().pixels()[i], &b = merged.film.pixels()[i];
         ASSERT_EQ(a.count, b.count);
-        ASSERT_EQ(a.rounds, b.rounds);
+        ASSERT_EQ(a.half_count, b.half_count);
         for (int c = 0; c < 3; ++c) {
             if (a.sum[c] != 0) worst = std::max(worst, std::fabs(a.sum[c] - b.sum[c]) / std::fabs(a.sum[c]));
-            if (a.round_sq[c] != 0)
-                worst = std::max(worst, std::fabs(a.round_sq[c] - b.round_sq[c]) / std::fabs(a.round_sq[c]));
+            if (a.half_sum[c] != 0)
+                worst = std::max(worst, std::fabs(a.half_sum[c] - b.half_sum[c]) / std::fabs(a.half_sum[c]));
         }
     }
     EXPECT_LT(worst, 1e-14);
@@ -128,34 +128,60 @@ TEST(Partial, RefusesUnknownEncodingsAndSizesThatOverflow) {
     EXPECT_EQ(decode_error(good), "no error");
 }
 
-// Version 2 kept the sum of the samples' squares: an upgrade must still read it (a server's
-// store holds such files), as rounds of one sample, which is the estimate it was written with.
-TEST(Partial, ReadsVersionTwoAsRoundsOfOneSample) {
-    std::vector<uint8_t> v2(40 + 120 + 8);
+// Versions 2 and 3, from before the sampler's two replicates, must still be read after an
+// upgrade (a server's store holds such files): the same image, an unknown error estimate, and
+// sampler version 1, so that they are never merged with or resumed by this version's samples.
+std::vector<uint8_t> old_version_file(uint32_t version) {
+    const size_t pixel = version == 2 ? 120 : 128, after_count = version == 2 ? 96 : 104;
+    std::vector<uint8_t> bytes(40 + pixel + 8);
     const char magic[] = "GLNTPART";
-    std::copy(magic, magic + 8, v2.begin());
-    put(v2, 8, uint32_t(2));
-    put(v2, 12, uint32_t(1));   // width
-    put(v2, 16, uint32_t(1));   // height
-    put(v2, 24, uint32_t(8));   // end sample
-    put(v2, 40, 6.0);           // sum r
-    put(v2, 64, 10.0);          // sum of squares r
-    put(v2, 88, uint64_t(8));   // count
-    put(v2, 96, uint64_t(1));   // dropped
-    put(v2, 104, int64_t(5));   // splat r
-    put(v2, 152, uint64_t(2));  // splats dropped
-    const Partial p = decode_partial(with_checksum(v2));
-    const PixelSums& px = p.film.pixel(0, 0);
-    EXPECT_EQ(px.sum[0], 6.0);
-    EXPECT_EQ(px.round_sq[0], 10.0);
-    EXPECT_EQ(px.count, 8u);
-    EXPECT_EQ(px.rounds, 8u);
-    EXPECT_EQ(px.dropped, 1u);
-    EXPECT_EQ(px.splat[0], 5);
-    EXPECT_EQ(px.splats_dropped, 2u);
-    EXPECT_EQ(p.end_sample, 8u);
-    put(v2, 8, uint32_t(4));
-    EXPECT_EQ(decode_error(with_checksum(v2)), "unsupported partial file version 4");
+    std::copy(magic, magic + 8, bytes.begin());
+    put(bytes, 8, version);
+    put(bytes, 12, uint32_t(1));   // width
+    put(bytes, 16, uint32_t(1));   // height
+    put(bytes, 24, uint32_t(8));   // end sample
+    put(bytes, 40, 6.0);           // sum r
+    put(bytes, 64, 10.0);          // sum of squares r (of the rounds' sums in version 3)
+    put(bytes, 88, uint64_t(8));   // count
+    if (version == 3) put(bytes, 96, uint64_t(2));  // rounds
+    put(bytes, after_count, uint64_t(1));               // dropped
+    put(bytes, after_count + 8, int64_t(5));            // splat r
+    put(bytes, after_count + 56, uint64_t(2));          // splats dropped
+    return bytes;
+}
+
+TEST(Partial, ReadsVersionsTwoAndThreeWithoutHalves) {
+    for (uint32_t version : {2u, 3u}) {
+        const Partial p = decode_partial(with_checksum(old_version_file(version)));
+        const PixelSums& px = p.film.pixel(0, 0);
+        EXPECT_EQ(px.sum[0], 6.0);
+        EXPECT_EQ(px.half_sum, Rgb{0});
+        EXPECT_EQ(px.count, 8u);
+        EXPECT_EQ(px.half_count, 0u);
+        EXPECT_EQ(px.dropped, 1u);
+        EXPECT_EQ(px.splat[0], 5);
+        EXPECT_EQ(px.splats_dropped, 2u);
+        EXPECT_EQ(p.end_sample, 8u);
+        EXPECT_EQ(p.sampler_version, 1u);
+        EXPECT_TRUE(std::isinf(p.film.error_estimate()));
+    }
+    std::vector<uint8_t> v5 = old_version_file(3);
+    put(v5, 8, uint32_t(5));
+    EXPECT_EQ(decode_error(with_checksum(v5)), "unsupported partial file version 5");
+}
+
+TEST(Partial, PartsOfAnotherSamplerVersionDoNotMerge) {
+    LoadedScene s = small_cornell();
+    s.settings.spp = 8;
+    Partial first = decode_partial(render_part(s, 0, 4)), second = decode_partial(render_part(s, 4, 8));
+    EXPECT_EQ(first.sampler_version, kSamplerVersion);
+    second.sampler_version = 1;
+    try {
+        merge_partials({first, second});
+        FAIL() << "merged";
+    } catch (const PartialError& e) {
+        EXPECT_STREQ(e.what(), "part [4, 8) was rendered by another version of glint's sampler (1, not 2)");
+    }
 }
 
 TEST(Partial, FingerprintsDependOnWhatDecidesPixels) {

@@ -38,18 +38,25 @@ void expect_net(const std::vector<std::array<double, 2>>& points, int m) {
     }
 }
 
-TEST(Sampler, EveryDimensionIsStratifiedOnItsOwnOverEveryAlignedBlock) {
+// Each replicate's points, read in its own rounds (the even or the odd ones), are stratified on
+// their own: the film and the direct view per subpixel over any aligned block of the
+// replicate's rounds, the first vertex over all its samples' power-of-two prefixes.
+TEST(Sampler, EveryDimensionIsStratifiedOnItsOwnInEachReplicate) {
     for (uint32_t round : {1u, 4u})
-        for (uint64_t pixel : {0u, 77u, 123456u}) {
-            const PixelSampler sampler(3, pixel, round);
-            for (int m : {2, 5, 8}) {
-                const uint32_t n = 1u << m;
-                for (uint32_t block : {0u, 1u, 6u}) {
-                    // The film and the direct view per subpixel, the first vertex over all samples.
-                    std::vector<std::array<double, 2>> film, view, light, bounce;
-                    for (uint32_t i = block * n * round; i < (block + 1) * n * round; ++i) {
-                        const Coordinates c = coordinates(sampler, i);
-                        if (i % round == 1 % round) {
+        for (uint32_t replicate : {0u, 1u})
+            for (uint64_t pixel : {0u, 77u, 123456u}) {
+                const PixelSampler sampler(3, pixel, round);
+                auto index = [&](uint32_t replicate_round, uint32_t subpixel) {
+                    return (2 * replicate_round + replicate) * round + subpixel;
+                };
+                for (int m : {2, 5, 8}) {
+                    const uint32_t n = 1u << m;
+                    for (uint32_t block : {0u, 1u, 6u}) {
+                        std::vector<std::array<double, 2>> film, view, light, bounce;
+                        for (uint32_t r = block * n; r < (block + 1) * n; ++r) {
+                            const uint32_t i = index(r, 1 % round);
+                            EXPECT_EQ(first_replicate(i, round), replicate == 0);
+                            const Coordinates c = coordinates(sampler, i);
                             film.push_back({c[0], c[1]});
                             for (uint32_t ray = 0; ray < 2; ++ray) {
                                 double u[2];
@@ -57,19 +64,20 @@ TEST(Sampler, EveryDimensionIsStratifiedOnItsOwnOverEveryAlignedBlock) {
                                 view.push_back({u[0], u[1]});
                             }
                         }
-                        if (i < block * n * round + n) light.push_back({c[2], c[3]});
-                        if (i < block * n * round + n) bounce.push_back({c[4], c[5]});
-                    }
-                    SCOPED_TRACE(::testing::Message() << "round " << round << " pixel " << pixel << " block " << block);
-                    expect_net(film, m);
-                    expect_net(view, m + 1);  // two direct-view rays a sample
-                    if (block == 0) {  // the first vertex's numbers are stratified over whole power-of-two prefixes
+                        for (uint32_t k = 0; k < n; ++k) {
+                            const Coordinates c = coordinates(sampler, index(k / round, k % round));
+                            light.push_back({c[2], c[3]});
+                            bounce.push_back({c[4], c[5]});
+                        }
+                        SCOPED_TRACE(::testing::Message() << "round " << round << " replicate " << replicate
+                                                          << " pixel " << pixel << " block " << block);
+                        expect_net(film, m);
+                        expect_net(view, m + 1);  // two direct-view rays a sample
                         expect_net(light, m);
                         expect_net(bounce, m);
                     }
                 }
             }
-        }
 }
 
 // The χ² statistic of a contingency table, and its degrees of freedom.

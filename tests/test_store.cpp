@@ -180,9 +180,9 @@ TEST(StoreResume, ARenderResumedBetweenPassesHasBitIdenticalSums) {
     for (size_t i = 0; i < whole.film().pixels().size(); ++i) {
         const PixelSums &a = whole.film().pixels()[i], &b = resumed.film().pixels()[i];
         ASSERT_EQ(std::memcmp(&a.sum, &b.sum, sizeof a.sum), 0) << "pixel " << i;
-        ASSERT_EQ(std::memcmp(&a.round_sq, &b.round_sq, sizeof a.round_sq), 0) << "pixel " << i;
+        ASSERT_EQ(std::memcmp(&a.half_sum, &b.half_sum, sizeof a.half_sum), 0) << "pixel " << i;
         ASSERT_EQ(a.count, b.count);
-        ASSERT_EQ(a.rounds, b.rounds);
+        ASSERT_EQ(a.half_count, b.half_count);
     }
     RenderJob wrong(scene.scene, scene.settings);
     EXPECT_THROW(wrong.resume(Film(4, 4), 8), std::invalid_argument);

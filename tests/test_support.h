@@ -18,9 +18,9 @@ inline std::unique_ptr<RenderJob> render(const LoadedScene& loaded, unsigned thr
     return job;
 }
 
-// The mean of every sample in a block of pixels (channel c), with its standard error: the
-// camera samples' rounds pooled (each round's mean one observation), plus the block's average of
-// light-tracing splats (their variance taken per pixel, as if the pixels' splats were
+// The mean of every sample in a block of pixels (channel c), with its standard error: each
+// pixel's camera variance from its two halves (Film::camera_variance), plus the block's average
+// of light-tracing splats (their variance taken per pixel, as if the pixels' splats were
 // independent).
 struct Estimate {
     double mean = 0, sigma = 0;
@@ -28,22 +28,41 @@ struct Estimate {
 inline Estimate pooled(const Film& film, int c, int x0 = 0, int y0 = 0, int x1 = -1, int y1 = -1) {
     if (x1 < 0) x1 = film.width();
     if (y1 < 0) y1 = film.height();
-    double sum = 0, count = 0, round_mean_sq = 0, rounds = 0, splat = 0, splat_var = 0;
+    double sum = 0, count = 0, var = 0, splat = 0;
     const double spp = film.samples_per_pixel();
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x) {
             const PixelSums& px = film.pixel(x, y);
-            const double k = double(px.count) / double(px.rounds);  // samples per round
             sum += px.sum[c];
             count += double(px.count);
-            round_mean_sq += px.round_sq[c] / (k * k);
-            rounds += double(px.rounds);
+            var += Film::camera_variance(px, c) + film.splat_variance(px, c, spp);
             splat += film.splat_mean(px, spp)[c];
-            splat_var += film.splat_variance(px, c, spp);
         }
-    const double mean = sum / count, pixels = double(x1 - x0) * (y1 - y0);
-    const double var = std::max(0.0, round_mean_sq / rounds - mean * mean) / rounds + splat_var / (pixels * pixels);
-    return {mean + splat / pixels, std::sqrt(var)};
+    const double pixels = double(x1 - x0) * (y1 - y0);
+    return {sum / count + splat / pixels, std::sqrt(var) / pixels};
+}
+
+// The error of a render at `spp` against the converged image, measured without a reference: two
+// renders with different seeds are independent and both unbiased, so the mean squared difference
+// between their images is twice either's MSE, the part that depends on the seed included (what a
+// sampler whose dimensions are functions of each other leaves behind). `pairs` pairs are
+// averaged; the renders' own error estimates are returned beside it (root mean square).
+struct Measured {
+    double rmse = 0, estimate = 0;
+};
+inline Measured measure_by_pairs(LoadedScene s, uint32_t spp, int pairs = 1) {
+    s.settings.spp = spp;
+    double mse = 0, estimate_sq = 0;
+    for (int p = 0; p < 2 * pairs; p += 2) {
+        s.settings.seed = uint64_t(p) + 1;
+        const auto a = render(s);
+        s.settings.seed = uint64_t(p) + 2;
+        const auto b = render(s);
+        const double d = rmse(a->film().mean(), b->film().mean());
+        mse += d * d / 2;
+        for (const auto* job : {a.get(), b.get()}) estimate_sq += job->film().error_estimate() * job->film().error_estimate() / 2;
+    }
+    return {std::sqrt(mse / pairs), std::sqrt(estimate_sq / pairs)};
 }
 
 }  // namespace glint::testing
