@@ -50,7 +50,10 @@ LoadedScene load_mode(const Options& o, const std::string& mode) {
     return loaded;
 }
 
-// The reference is rendered once per scene and size and kept in the output folder.
+// The reference is rendered once per scene and size and kept in the output folder, with its own
+// error estimate beside it (FILE.estimate), so that a reader can take the reference's noise out
+// of an RMSE measured against it: for independent unbiased images, E[RMSE²] against the
+// reference is the render's MSE plus the reference's.
 Image reference(const Options& o) {
     const fs::path file = fs::path(o.out) / ("reference-" + std::to_string(o.width) + "x" + std::to_string(o.height) +
                                              "-" + std::to_string(o.reference_spp) + "spp.pfm");
@@ -65,6 +68,8 @@ Image reference(const Options& o) {
     std::fprintf(stderr, "reference done in %.0f s, its own estimated RMSE %.4g\n", job.progress().seconds,
                  job.film().error_estimate());
     write_file(file.string(), encode_pfm(job.film().mean()));
+    const std::string estimate = std::to_string(job.film().error_estimate()) + "\n";
+    write_file(file.string() + ".estimate", std::vector<uint8_t>(estimate.begin(), estimate.end()));
     return job.film().mean();
 }
 

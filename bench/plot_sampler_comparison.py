@@ -1,0 +1,110 @@
+#!/usr/bin/python3
+"""Time to error before and after a sampler change, from bench/run_sampler_comparison.sh's CSV.
+
+Arguments: the CSV, the folder of the references, the previous version's name, and the
+references' size-and-spp suffix. The error of a rung is the RMSE against the reference with the
+reference's own estimated error taken out (for independent unbiased images the squared RMSE
+between them is the sum of their MSEs; the estimate is honest for this version's references).
+Targets per scene: this version's error at 64 spp (low) and at 4096 spp (high). Each version's
+time to a target is read off its ladder (log-log interpolation between rungs); a version whose
+ladder never gets there is reported as not reaching it, since its error need not keep falling.
+Writes bench/plots/sampler-<scene>.svg and the table between the sampler_comparison markers of
+bench/BENCHMARKS.md. Needs Debian's python3-matplotlib.
+"""
+import csv
+import math
+import sys
+from collections import defaultdict
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from plot_time_to_error import time_to  # noqa: E402
+
+
+def load(path, references, suffix):
+    ladders = defaultdict(dict)
+    for row in csv.DictReader(open(path)):
+        ladders[row["scene"]].setdefault(row["version"], []).append(
+            (int(row["spp"]), float(row["seconds"]), float(row["rmse"]), float(row["estimate"])))
+    noise = {}
+    for scene in ladders:
+        estimate = Path(references) / scene / f"reference-{suffix}.pfm.estimate"
+        noise[scene] = float(estimate.read_text()) if estimate.exists() else 0.0
+    return ladders, noise
+
+
+def true_error(rungs, reference_noise):
+    return [(spp, t, math.sqrt(max(0.0, e * e - reference_noise ** 2)), est) for spp, t, e, est in rungs]
+
+
+def reached(rungs, target):
+    """Seconds to reach `target`, or None where the ladder never gets there."""
+    if min(r[2] for r in rungs) > target:
+        return None
+    return time_to([(spp, t, e) for spp, t, e, _ in rungs], target)[0]
+
+
+def at_spp(rungs, spp):
+    return next(r for r in rungs if r[0] == spp)
+
+
+def plot(scene, ladders, targets, previous, out):
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for version, rungs in ladders.items():
+        label = "this version" if version == "after" else previous
+        line, = ax.plot([r[1] for r in rungs], [r[2] for r in rungs], marker="o", ms=3, label=f"{label}: RMSE")
+        ax.plot([r[1] for r in rungs], [r[3] for r in rungs], ls="--", lw=1, color=line.get_color(),
+                label=f"{label}: its own estimate")
+    for name, target in targets.items():
+        ax.axhline(target, color="grey", ls=":", lw=1)
+        ax.annotate(f"{name} target", (ax.get_xlim()[0], target), fontsize=7, va="bottom")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("wall time, 2 threads (s)")
+    ax.set_ylabel("RMSE against the converged image")
+    ax.set_title(f"{scene}: error against time, 4 to 4096 spp")
+    ax.legend(fontsize=7)
+    ax.grid(True, which="both", lw=0.3)
+    fig.tight_layout()
+    fig.savefig(out)
+    plt.close(fig)
+
+
+def seconds(t):
+    return f"{t:.2f}" if t is not None else "not reached"
+
+
+def main():
+    path, references, previous, suffix = sys.argv[1:5]
+    ladders, noise = load(path, references, suffix)
+    root = Path(__file__).resolve().parent
+    lines = ["| scene | target | RMSE | this version (s) | " + previous + " (s) | sooner |", "|---|---|---|---|---|---|"]
+    errors = ["| scene | spp | RMSE, this version | its estimate | RMSE, " + previous + " | its estimate |",
+              "|---|---|---|---|---|---|"]
+    for scene in ladders:
+        versions = {v: true_error(r, noise[scene]) for v, r in ladders[scene].items()}
+        after = versions["after"]
+        targets = {"low (64 spp)": at_spp(after, 64)[2], "high (4096 spp)": at_spp(after, 4096)[2]}
+        plot(scene, versions, targets, previous, root / "plots" / f"sampler-{scene}.svg")
+        for name, target in targets.items():
+            new, old = reached(after, target), reached(versions["before"], target)
+            ratio = f"{old / new:.2f}×" if old is not None else "—"
+            lines.append(f"| {scene} | {name} | {target:.4g} | {seconds(new)} | {seconds(old)} | {ratio} |")
+        for spp in (64, 4096):
+            a, b = at_spp(after, spp), at_spp(versions["before"], spp)
+            errors.append(f"| {scene} | {spp} | {a[2]:.4g} | {a[3]:.4g} | {b[2]:.4g} | {b[3]:.4g} |")
+    plots = " ".join(f"![{s}](plots/sampler-{s}.svg)" for s in ladders)
+    md = root / "BENCHMARKS.md"
+    text = md.read_text()
+    begin, end = "<!-- sampler_comparison:begin -->", "<!-- sampler_comparison:end -->"
+    head, rest = text.split(begin)
+    _, tail = rest.split(end)
+    md.write_text(head + begin + "\n" + "\n".join(lines) + "\n\n" + "\n".join(errors) + "\n\n" + plots + "\n" + end + tail)
+
+
+if __name__ == "__main__":
+    main()
