@@ -38,7 +38,7 @@ def load(path, references, suffix):
 
 
 def true_error(rungs, reference_noise):
-    return [(spp, t, math.sqrt(max(0.0, e * e - reference_noise ** 2)), est) for spp, t, e, est in rungs]
+    return [(spp, t, math.sqrt(max(1e-24, e * e - reference_noise ** 2)), est) for spp, t, e, est in rungs]
 
 
 def reached(rungs, target):
