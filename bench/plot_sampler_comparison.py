@@ -22,7 +22,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from plot_time_to_error import time_to  # noqa: E402
+from plot_time_to_error import save_error_plot, time_to  # noqa: E402
 
 
 def load(path, references, suffix):
@@ -62,16 +62,7 @@ def plot(scene, ladders, targets, previous, out):
     for name, target in targets.items():
         ax.axhline(target, color="grey", ls=":", lw=1)
         ax.annotate(f"{name} target", (ax.get_xlim()[0], target), fontsize=7, va="bottom")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("wall time, 2 threads (s)")
-    ax.set_ylabel("RMSE against the converged image")
-    ax.set_title(f"{scene}: error against time, 4 to 4096 spp")
-    ax.legend(fontsize=7)
-    ax.grid(True, which="both", lw=0.3)
-    fig.tight_layout()
-    fig.savefig(out)
-    plt.close(fig)
+    save_error_plot(fig, ax, f"{scene}: error against time, 4 to 4096 spp", "RMSE against the converged image", out)
 
 
 def seconds(t):

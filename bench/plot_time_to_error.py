@@ -61,11 +61,16 @@ def plot(scene, modes, target, out):
         rungs = repeats[sorted(repeats)[0]]
         ax.plot([r[1] for r in rungs], [r[2] for r in rungs], marker="o", ms=3, label=LABELS.get(key, str(key)))
     ax.axhline(target, color="grey", ls=":", lw=1, label="target RMSE")
+    save_error_plot(fig, ax, f"{scene}: error against time (256x192)", "RMSE against reference", out)
+
+
+def save_error_plot(fig, ax, title, ylabel, out):
+    """Log-log axes of error against wall time, saved to `out`."""
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("wall time, 2 threads (s)")
-    ax.set_ylabel("RMSE against reference")
-    ax.set_title(f"{scene}: error against time (256x192)")
+    ax.set_ylabel(ylabel)
+    ax.set_title(title)
     ax.legend(fontsize=7)
     ax.grid(True, which="both", lw=0.3)
     fig.tight_layout()
