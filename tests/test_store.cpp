@@ -20,6 +20,7 @@
 #include <httplib.h>
 
 #include "files.h"
+#include "fingerprint.h"
 #include "job_request.h"
 #include "test_support.h"
 
@@ -308,6 +309,60 @@ TEST_F(Store, CorruptOrTruncatedFilmsFailTheirJobsAndServeNoImage) {
     ServerProcess again(store_, log(3));
     EXPECT_EQ(again.get_json("/jobs/" + flipped)["state"], "failed");
     EXPECT_EQ(again.get_json("/jobs/" + next)["state"], "done");
+}
+
+// A film as a glint from before the sampler's replicates wrote it: partial file version 3 (no
+// sampler version, rounds' sums of squares where version 4 keeps the first half's sums).
+std::vector<uint8_t> as_version_three(const Partial& p) {
+    std::vector<uint8_t> bytes;
+    auto put = [&](const auto& v) {
+        const auto* b = reinterpret_cast<const uint8_t*>(&v);
+        bytes.insert(bytes.end(), b, b + sizeof v);
+    };
+    for (char c : std::string("GLNTPART")) put(c);
+    for (uint32_t v : {3u, uint32_t(p.film.width()), uint32_t(p.film.height()), p.first_sample, p.end_sample,
+                       uint32_t(p.encoding == Encoding::srgb)})
+        put(v);
+    put(p.fingerprint);
+    for (const PixelSums& px : p.film.pixels()) {
+        for (int c = 0; c < 3; ++c) put(px.sum[c]);
+        for (int c = 0; c < 3; ++c) put(px.sum[c] * px.sum[c]);
+        for (uint64_t v : {px.count, px.count / 4, px.dropped}) put(v);
+        for (int64_t v : px.splat) put(v);
+        for (int64_t v : px.splat_sq) put(v);
+        put(px.splats_dropped);
+    }
+    Fnv1a h;
+    h.bytes(bytes.data(), bytes.size());
+    put(h.digest());
+    return bytes;
+}
+
+// An upgrade loses nothing rendered: a finished job whose film an older glint wrote is served
+// as it was; an unfinished one cannot go on with other sample points, and fails saying so.
+TEST_F(Store, FilmsOfAnOlderSamplerAreServedButNotResumed) {
+    std::string done, running;
+    std::string png;
+    {
+        ServerProcess server(store_, log(1), {"--checkpoint-interval", "0"});
+        done = server.submit(R"({"preset": "cornell", "width": 16, "height": 12, "spp": 8})");
+        EXPECT_EQ(server.wait_until_final(done)["state"], "done");
+        png = server.get_body("/jobs/" + done + "/image.png");
+        running = server.submit(R"({"preset": "cornell", "width": 16, "height": 12, "spp": 65536})");
+        ASSERT_TRUE(wait_for_checkpoint(running));
+        server.kill_now();
+    }
+    for (const auto& [id, file] : {std::pair{done, "final.glntpart"}, std::pair{running, "checkpoint.glntpart"}}) {
+        const fs::path path = film(id, file);
+        write_file(path.string(), as_version_three(decode_partial(read_file(path.string(), SIZE_MAX))));
+    }
+    ServerProcess server(store_, log(2));
+    EXPECT_EQ(server.get_json("/jobs/" + done)["state"], "done");
+    EXPECT_TRUE(server.get_body("/jobs/" + done + "/image.png") == png);
+    const json status = server.get_json("/jobs/" + running);
+    EXPECT_EQ(status["state"], "failed") << status.dump();
+    EXPECT_NE(status.value("error", "").find("another version of glint's sampler (1, not 2)"), std::string::npos)
+        << status.dump();
 }
 
 TEST_F(Store, EvictsTheOldestFinishedJobsBeyondItsLimitNeverAnUnfinishedOne) {
