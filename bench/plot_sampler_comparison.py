@@ -1,18 +1,25 @@
 #!/usr/bin/python3
 """Time to error before and after a sampler change, from bench/run_sampler_comparison.sh's CSV.
 
-Arguments: the CSV, the folder of the references, the previous version's name, and the
-references' size-and-spp suffix. The error of a rung is the RMSE against the reference with the
-reference's own estimated error taken out (for independent unbiased images the squared RMSE
-between them is the sum of their MSEs; the estimate is honest for this version's references).
-Targets per scene: this version's error at 64 spp (low) and at 4096 spp (high). Each version's
-time to a target is read off its ladder (log-log interpolation between rungs); a version whose
-ladder never gets there is reported as not reaching it, since its error need not keep falling.
+Arguments: the ladders' CSV, the seeds' CSV, the folder of the references, the previous
+version's name, and the references' size-and-spp suffix. Errors are RMSE against the reference
+with the reference's own estimated error taken out (for independent unbiased images the squared
+RMSE between them is the sum of their MSEs; the estimate is honest for this version's
+references).
+
+High target: this version's error at 4096 spp. Each version's time to it is read off its ladder
+(log-log interpolation between rungs); a version whose ladder never gets there is reported as
+not reaching it, since its error need not keep falling. Low target: at 64 spp one seed's error
+is too noisy to compare, so each version's MSE there is the mean over the seeds' renders, and
+its time to this version's MSE is its mean time scaled by its MSE over this version's (time to
+an error scales with the MSE where the MSE falls as 1/spp).
 Writes bench/plots/sampler-<scene>.svg and the table between the sampler_comparison markers of
 bench/BENCHMARKS.md. Needs Debian's python3-matplotlib.
 """
+import array
 import csv
 import math
+import statistics
 import sys
 from collections import defaultdict
 from pathlib import Path
@@ -35,6 +42,33 @@ def load(path, references, suffix):
         estimate = Path(references) / scene / f"reference-{suffix}.pfm.estimate"
         noise[scene] = float(estimate.read_text()) if estimate.exists() else 0.0
     return ladders, noise
+
+
+def read_pfm(path):
+    data = Path(path).read_bytes()
+    _, size, _, pixels = data.split(b"\n", 3)
+    width, height = map(int, size.split())
+    values = array.array("f")
+    values.frombytes(pixels[:width * height * 12])
+    return values
+
+
+def seed_errors(path, references, suffix, noise):
+    """Per scene and version: the mean MSE over the seeds, its standard error, and the mean time."""
+    renders = defaultdict(lambda: defaultdict(list))
+    for row in csv.DictReader(open(path)):
+        renders[row["scene"]][row["version"]].append((float(row["seconds"]), row["image"]))
+    result = defaultdict(dict)
+    for scene, versions in renders.items():
+        reference = read_pfm(Path(references) / scene / f"reference-{suffix}.pfm")
+        for version, runs in versions.items():
+            mse = []
+            for _, image in runs:
+                values = read_pfm(image)
+                mse.append(sum((a - b) ** 2 for a, b in zip(values, reference)) / len(values) - noise[scene] ** 2)
+            result[scene][version] = (statistics.mean(mse), statistics.stdev(mse) / math.sqrt(len(mse)),
+                                      statistics.mean(t for t, _ in runs), len(runs))
+    return result
 
 
 def true_error(rungs, reference_noise):
@@ -70,21 +104,27 @@ def seconds(t):
 
 
 def main():
-    path, references, previous, suffix = sys.argv[1:5]
-    ladders, noise = load(path, references, suffix)
+    ladder_csv, seeds_csv, references, previous, suffix = sys.argv[1:6]
+    ladders, noise = load(ladder_csv, references, suffix)
+    seeds = seed_errors(seeds_csv, references, suffix, noise)
     root = Path(__file__).resolve().parent
-    lines = ["| scene | target | RMSE | this version (s) | " + previous + " (s) | sooner |", "|---|---|---|---|---|---|"]
-    errors = ["| scene | spp | RMSE, this version | its estimate | RMSE, " + previous + " | its estimate |",
+    lines = [f"| scene | target | RMSE | this version (s) | {previous} (s) | sooner |", "|---|---|---|---|---|---|"]
+    errors = [f"| scene | spp | RMSE, this version | its estimate | RMSE, {previous} | its estimate |",
               "|---|---|---|---|---|---|"]
     for scene in ladders:
         versions = {v: true_error(r, noise[scene]) for v, r in ladders[scene].items()}
         after = versions["after"]
-        targets = {"low (64 spp)": at_spp(after, 64)[2], "high (4096 spp)": at_spp(after, 4096)[2]}
-        plot(scene, versions, targets, previous, root / "plots" / f"sampler-{scene}.svg")
-        for name, target in targets.items():
-            new, old = reached(after, target), reached(versions["before"], target)
-            ratio = f"{old / new:.2f}×" if old is not None else "—"
-            lines.append(f"| {scene} | {name} | {target:.4g} | {seconds(new)} | {seconds(old)} | {ratio} |")
+        new_mse, new_se, new_t, n = seeds[scene]["after"]
+        old_mse, old_se, old_t, _ = seeds[scene]["before"]
+        old_to_new = old_t * old_mse / new_mse
+        lines.append(f"| {scene} | low (64 spp, {n} seeds) | {math.sqrt(new_mse):.4g} | {new_t:.2f} | "
+                     f"{old_to_new:.2f} | {old_to_new / new_t:.2f}× (MSE {old_mse:.3g} ± {old_se:.2g} against "
+                     f"{new_mse:.3g} ± {new_se:.2g}) |")
+        high = at_spp(after, 4096)[2]
+        plot(scene, versions, {"high (4096 spp)": high}, previous, root / "plots" / f"sampler-{scene}.svg")
+        new, old = reached(after, high), reached(versions["before"], high)
+        ratio = f"{old / new:.2f}×" if old is not None else "—"
+        lines.append(f"| {scene} | high (4096 spp) | {high:.4g} | {seconds(new)} | {seconds(old)} | {ratio} |")
         for spp in (64, 4096):
             a, b = at_spp(after, spp), at_spp(versions["before"], spp)
             errors.append(f"| {scene} | {spp} | {a[2]:.4g} | {a[3]:.4g} | {b[2]:.4g} | {b[3]:.4g} |")
@@ -94,7 +134,8 @@ def main():
     begin, end = "<!-- sampler_comparison:begin -->", "<!-- sampler_comparison:end -->"
     head, rest = text.split(begin)
     _, tail = rest.split(end)
-    md.write_text(head + begin + "\n" + "\n".join(lines) + "\n\n" + "\n".join(errors) + "\n\n" + plots + "\n" + end + tail)
+    md.write_text(head + begin + "\n" + "\n".join(lines) + "\n\nOne seed's ladder, for the plots:\n\n" +
+                  "\n".join(errors) + "\n\n" + plots + "\n" + end + tail)
 
 
 if __name__ == "__main__":
