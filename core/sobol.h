@@ -23,12 +23,20 @@ inline uint32_t reverse_bits(uint32_t i) {
 // Dimension 0: the van der Corput sequence, i's bits reversed.
 inline uint32_t sobol_dimension0(uint32_t i) { return reverse_bits(i); }
 
-// Dimension 1: primitive polynomial x + 1, direction numbers v_k = v_(k-1) xor v_(k-1)/2.
+// Dimension 1: primitive polynomial x + 1, direction numbers v_k = v_(k-1) xor v_(k-1)/2, so
+// v_k has the bit j places below the top set where the binomial C(k, j) is odd, that is where
+// j's bits are a subset of k's (Lucas). Bit j of the point, counted from the top, is then the
+// xor of i's bits k over the supersets k of j: a superset transform over the five bits of a
+// position, done for all 32 positions at once in five shift-and-xor steps (step d folds in the
+// positions that differ from j by bit d), then reversed so that position j lands j below the top.
+// A loop over i's bits costs a branch per bit, and shuffled indices have all 32 bits.
 inline uint32_t sobol_dimension1(uint32_t i) {
-    uint32_t result = 0;
-    for (uint32_t v = 0x80000000u; i != 0; i >>= 1, v ^= v >> 1)
-        if (i & 1) result ^= v;
-    return result;
+    i ^= (i >> 1) & 0x55555555u;
+    i ^= (i >> 2) & 0x33333333u;
+    i ^= (i >> 4) & 0x0F0F0F0Fu;
+    i ^= (i >> 8) & 0x00FF00FFu;
+    i ^= (i >> 16) & 0x0000FFFFu;
+    return reverse_bits(i);
 }
 
 // Nested scrambling in the manner of Laine and Karras (2011): in bit-reversed order, where the

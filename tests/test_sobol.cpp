@@ -30,6 +30,24 @@ TEST(Sobol, EveryPowerOfTwoBlockFillsEveryElementaryInterval) {
         }
 }
 
+// The second dimension by its definition: the xor of the direction numbers v_k of i's set bits,
+// v_0 = 2^31 and v_k = v_(k-1) xor v_(k-1)/2.
+uint32_t sobol_dimension1_by_definition(uint32_t i) {
+    uint32_t result = 0;
+    for (uint32_t v = 0x80000000u; i != 0; i >>= 1, v ^= v >> 1)
+        if (i & 1) result ^= v;
+    return result;
+}
+
+TEST(Sobol, SecondDimensionIsTheDirectionNumbersXor) {
+    for (uint32_t i = 0; i < 70000; ++i) ASSERT_EQ(sobol_dimension1(i), sobol_dimension1_by_definition(i)) << i;
+    uint64_t state = 1;
+    for (int n = 0; n < 100000; ++n) {
+        const uint32_t i = uint32_t(mix64(state++));
+        ASSERT_EQ(sobol_dimension1(i), sobol_dimension1_by_definition(i)) << i;
+    }
+}
+
 TEST(Sobol, KeysScrambleDifferentlyAndTheMeanIsAHalf) {
     double a1, a2, b1, b2;
     sobol_2d(3, 1, a1, a2);
