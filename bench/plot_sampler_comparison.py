@@ -94,8 +94,7 @@ def plot(scene, ladders, targets, previous, out):
         ax.plot([r[1] for r in rungs], [r[3] for r in rungs], ls="--", lw=1, color=line.get_color(),
                 label=f"{label}: its own estimate")
     for name, target in targets.items():
-        ax.axhline(target, color="grey", ls=":", lw=1)
-        ax.annotate(f"{name} target", (ax.get_xlim()[0], target), fontsize=7, va="bottom")
+        ax.axhline(target, color="grey", ls=":", lw=1, label=f"{name} target")
     save_error_plot(fig, ax, f"{scene}: error against time, 4 to 4096 spp", "RMSE against the converged image", out)
 
 
