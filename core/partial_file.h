@@ -45,8 +45,8 @@ std::vector<uint8_t> encode_partial(const Partial& partial);
 uint64_t partial_file_size(int width, int height);
 Partial decode_partial(const std::vector<uint8_t>& bytes);  // throws PartialError
 
-// Combines parts of one job: same fingerprint, sampler version and size, sample ranges that neither overlap nor
-// leave gaps (in any order given). Sums are added in order of the ranges. Throws PartialError.
+// Combines parts of one job: same fingerprint, sampler version and size, sample ranges that
+// neither overlap nor leave gaps (in any order given). Sums are added in order of the ranges. Throws PartialError.
 Partial merge_partials(std::vector<Partial> parts);
 
 }  // namespace glint
