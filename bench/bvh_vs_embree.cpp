@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "embree_scene.h"
-#include "geometry.h"
-#include "obj_loader.h"
-#include "ray_file.h"
-#include "thread_pool.h"
+#include "scene/geometry.h"
+#include "io/obj_loader.h"
+#include "io/ray_file.h"
+#include "base/thread_pool.h"
 
 using namespace glint;
 

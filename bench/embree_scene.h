@@ -5,7 +5,7 @@
 
 #include <embree3/rtcore.h>
 
-#include "obj_loader.h"
+#include "io/obj_loader.h"
 
 namespace glint {
 

@@ -28,9 +28,9 @@
 #include <vector>
 
 #include "embree_scene.h"
-#include "geometry.h"
-#include "obj_loader.h"
-#include "ray_file.h"
+#include "scene/geometry.h"
+#include "io/obj_loader.h"
+#include "io/ray_file.h"
 
 using namespace glint;
 

@@ -17,10 +17,10 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "files.h"
-#include "image_io.h"
-#include "renderer.h"
-#include "scene_loader.h"
+#include "base/files.h"
+#include "io/image_io.h"
+#include "render/renderer.h"
+#include "io/scene_loader.h"
 
 using namespace glint;
 namespace fs = std::filesystem;

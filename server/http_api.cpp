@@ -5,7 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "auth.h"
-#include "files.h"
+#include "base/files.h"
 #include "guarded_server.h"
 #include "job_request.h"
 #include "static_files.h"

@@ -2,7 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "fingerprint.h"
+#include "io/fingerprint.h"
 #include "job_store.h"
 
 namespace glint {

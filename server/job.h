@@ -11,9 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "partial_file.h"
-#include "renderer.h"
-#include "scene_loader.h"
+#include "io/partial_file.h"
+#include "render/renderer.h"
+#include "io/scene_loader.h"
 
 namespace glint {
 

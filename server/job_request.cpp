@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "files.h"
+#include "base/files.h"
 
 namespace glint {
 namespace {

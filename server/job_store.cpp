@@ -4,7 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "files.h"
+#include "base/files.h"
 
 namespace glint {
 namespace {

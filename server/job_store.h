@@ -6,9 +6,9 @@
 //   request.json        the request body as received (a scene, or a preset with overrides)
 //   state.json          {"created", "state", "error", "progress"}: what GET /jobs/{id} shows
 //   checkpoint.glntpart the film after a whole pass (samples [first, end) of every pixel), in
-//                       the partial-file format of core/partial_file.h (fingerprint, checksum)
+//                       the partial-file format of core/io/partial_file.h (fingerprint, checksum)
 //   final.glntpart      the film as the job ended (a cancelled job's last pass may be partial)
-// Every file is written atomically (core/files.h): a crash leaves the old file or the new one.
+// Every file is written atomically (core/base/files.h): a crash leaves the old file or the new one.
 #pragma once
 
 #include <chrono>
@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "job.h"
-#include "partial_file.h"
+#include "io/partial_file.h"
 
 namespace glint {
 

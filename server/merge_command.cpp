@@ -2,8 +2,8 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "files.h"
-#include "partial_file.h"
+#include "base/files.h"
+#include "io/partial_file.h"
 
 namespace glint {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cstdio>
 
-#include "renderer.h"
+#include "render/renderer.h"
 
 namespace glint {
 

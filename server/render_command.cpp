@@ -10,11 +10,11 @@
 #include <spdlog/spdlog.h>
 
 #include "commands.h"
-#include "files.h"
-#include "fingerprint.h"
-#include "partial_file.h"
+#include "base/files.h"
+#include "io/fingerprint.h"
+#include "io/partial_file.h"
 #include "progress_bar.h"
-#include "scene_loader.h"
+#include "io/scene_loader.h"
 
 namespace glint {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "files.h"
+#include "base/files.h"
 
 namespace glint {
 namespace {

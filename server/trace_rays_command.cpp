@@ -5,11 +5,11 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "files.h"
-#include "geometry.h"
-#include "obj_loader.h"
-#include "ray_file.h"
-#include "thread_pool.h"
+#include "base/files.h"
+#include "scene/geometry.h"
+#include "io/obj_loader.h"
+#include "io/ray_file.h"
+#include "base/thread_pool.h"
 
 namespace glint {
 namespace {

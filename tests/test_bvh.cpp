@@ -7,10 +7,10 @@
 #include <bit>
 #include <cmath>
 
-#include "bvh_collapse.h"
-#include "geometry.h"
-#include "rng.h"
-#include "sampling.h"
+#include "accel/bvh_collapse.h"
+#include "scene/geometry.h"
+#include "base/rng.h"
+#include "base/sampling.h"
 
 namespace glint {
 namespace {

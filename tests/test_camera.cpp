@@ -1,8 +1,8 @@
 // The camera reproduces smallpt's rays, and a thin lens focuses where it says.
 #include <gtest/gtest.h>
 
-#include "camera.h"
-#include "rng.h"
+#include "scene/camera.h"
+#include "base/rng.h"
 
 namespace glint {
 namespace {

@@ -1,11 +1,11 @@
-// Splitting off the direct view where it varies across a pixel (core/direct_view.h), on an
+// Splitting off the direct view where it varies across a pixel (core/render/direct_view.h), on an
 // emitter whose edge crosses the image exactly between two columns, where each pixel's value is
 // known in closed form.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
-#include "direct_view.h"
+#include "render/direct_view.h"
 #include "test_support.h"
 
 namespace glint {

@@ -2,8 +2,8 @@
 // that are NaN or infinite.
 #include <gtest/gtest.h>
 
-#include "film.h"
-#include "image_io.h"
+#include "render/film.h"
+#include "io/image_io.h"
 
 namespace glint {
 namespace {

@@ -7,11 +7,11 @@
 #include <fstream>
 #include <iterator>
 
-#include "fingerprint.h"
+#include "io/fingerprint.h"
 #include "fuzz/harnesses.h"
 #include "job_request.h"
-#include "partial_file.h"
-#include "scene_loader.h"
+#include "io/partial_file.h"
+#include "io/scene_loader.h"
 
 namespace glint {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "image_io.h"
+#include "io/image_io.h"
 
 namespace glint {
 namespace {

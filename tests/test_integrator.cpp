@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "files.h"
+#include "base/files.h"
 #include "test_support.h"
 
 namespace glint {

@@ -2,10 +2,10 @@
 // the shading point, and sample/pdf consistency that MIS depends on.
 #include <gtest/gtest.h>
 
-#include "caustic_emitter.h"
-#include "lights.h"
-#include "scene_loader.h"
-#include "sampling.h"
+#include "render/caustic_emitter.h"
+#include "scene/lights.h"
+#include "io/scene_loader.h"
+#include "base/sampling.h"
 
 namespace glint {
 namespace {

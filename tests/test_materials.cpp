@@ -1,8 +1,8 @@
 // Materials: total internal reflection, grazing incidence, Snell's law, and no energy created.
 #include <gtest/gtest.h>
 
-#include "material.h"
-#include "sampling.h"
+#include "scene/material.h"
+#include "base/sampling.h"
 
 namespace glint {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "obj_loader.h"
+#include "io/obj_loader.h"
 
 namespace glint {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <cstring>
 
-#include "fingerprint.h"
-#include "partial_file.h"
+#include "io/fingerprint.h"
+#include "io/partial_file.h"
 #include "test_support.h"
 
 namespace glint {

@@ -2,6 +2,7 @@
 // each way a job can stop.
 #include <gtest/gtest.h>
 
+#include "io/image_io.h"
 #include "test_support.h"
 
 namespace glint {

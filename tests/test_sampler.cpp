@@ -7,7 +7,7 @@
 #include <set>
 #include <vector>
 
-#include "sampler.h"
+#include "render/sampler.h"
 
 namespace glint {
 namespace {

@@ -1,8 +1,8 @@
 // The samplers' own trigonometry against libm's.
 #include <gtest/gtest.h>
 
-#include "rng.h"
-#include "sampling.h"
+#include "base/rng.h"
+#include "base/sampling.h"
 
 namespace glint {
 namespace {

@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "files.h"
-#include "scene_loader.h"
+#include "base/files.h"
+#include "io/scene_loader.h"
 
 namespace glint {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <set>
 
-#include "sobol.h"
+#include "base/sobol.h"
 
 namespace glint {
 namespace {

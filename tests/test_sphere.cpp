@@ -2,9 +2,9 @@
 // surface, and a second surface a hair away.
 #include <gtest/gtest.h>
 
-#include "geometry.h"
-#include "rng.h"
-#include "sampling.h"
+#include "scene/geometry.h"
+#include "base/rng.h"
+#include "base/sampling.h"
 
 namespace glint {
 namespace {

@@ -19,8 +19,8 @@
 
 #include <httplib.h>
 
-#include "files.h"
-#include "fingerprint.h"
+#include "base/files.h"
+#include "io/fingerprint.h"
 #include "job_request.h"
 #include "test_support.h"
 

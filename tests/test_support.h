@@ -3,8 +3,8 @@
 
 #include <string>
 
-#include "renderer.h"
-#include "scene_loader.h"
+#include "render/renderer.h"
+#include "io/scene_loader.h"
 
 namespace glint::testing {
 

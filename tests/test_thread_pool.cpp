@@ -4,7 +4,7 @@
 #include <future>
 #include <string>
 
-#include "thread_pool.h"
+#include "base/thread_pool.h"
 
 namespace glint {
 namespace {

@@ -6,8 +6,8 @@
 #include <map>
 #include <string>
 
-#include "geometry.h"
-#include "rng.h"
+#include "scene/geometry.h"
+#include "base/rng.h"
 
 namespace glint {
 namespace {

@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "fingerprint.h"
+#include "io/fingerprint.h"
 #include "job_request.h"
-#include "obj_loader.h"
-#include "partial_file.h"
-#include "scene_loader.h"
+#include "io/obj_loader.h"
+#include "io/partial_file.h"
+#include "io/scene_loader.h"
 
 namespace glint::fuzz {
 namespace {

@@ -1,0 +1,39 @@
+#include "io/fingerprint.h"
+
+namespace glint {
+
+uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
+    Fnv1a h;
+    const CameraSettings& c = scene.camera();
+    for (const Vec3& v : {c.position, c.direction, c.up, scene.background()}) h.vec(v);
+    for (double v : {c.fov_degrees, c.near, c.aperture, c.focus_distance}) h.value(v);
+    const IntegratorSettings& in = scene.integrator();
+    h.value(in.light_sampling);
+    h.value(in.max_depth);
+    h.value(in.rr_depth);
+    h.value(in.direct_view_rays);
+    h.value(scene.light_tracing());
+    const Geometry& g = scene.geometry();
+    h.value(g.accelerator());  // the accelerators may break exact ties between equal hits differently
+    for (uint32_t prim = 0; prim < g.primitive_count(); ++prim) {
+        if (g.is_sphere(prim)) {
+            h.vec(g.sphere(prim).centre);
+            h.value(g.sphere(prim).radius);
+        } else {
+            for (const Vec3& v : {g.triangle(prim).v0, g.triangle(prim).v1, g.triangle(prim).v2}) h.vec(v);
+        }
+        const Material& m = scene.material(prim);
+        h.value(m.type);
+        h.vec(m.albedo);
+        h.value(m.ior);
+        h.vec(m.emission);
+    }
+    h.value(settings.width);
+    h.value(settings.height);
+    h.value(settings.filter);
+    h.value(settings.sampler);
+    h.value(settings.seed);
+    return h.digest();
+}
+
+}  // namespace glint

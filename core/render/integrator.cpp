@@ -1,0 +1,232 @@
+#include "render/integrator.h"
+
+#include "base/sampling.h"
+
+#include <utility>
+
+namespace glint {
+namespace {
+
+PathShape extend(PathShape shape, bool diffuse) {
+    switch (shape) {
+        case PathShape::camera: return diffuse ? PathShape::diffuse : PathShape::other;
+        case PathShape::diffuse: return diffuse ? PathShape::other : PathShape::caustic;
+        case PathShape::caustic: return diffuse ? PathShape::other : PathShape::caustic;
+        case PathShape::other: return PathShape::other;
+    }
+    return PathShape::other;
+}
+
+// Whether y's own sphere hides x: light reached y from inside the sphere and x is outside it.
+// (Elsewhere a segment from y to a point on the side the light came from stays off y's
+// surface, so the shadow ray may skip y's primitive, as it must: rounding could find y itself.)
+bool hidden_by_own_sphere(const Geometry& geometry, const LightVertex& y, const Vec3& x) {
+    if (!geometry.is_sphere(y.si.prim) || dot(y.d_in, y.si.n) <= 0) return false;
+    const Sphere& s = geometry.sphere(y.si.prim);
+    const Vec3 from_centre = x - s.centre;
+    return dot(from_centre, from_centre) > s.radius * s.radius;
+}
+
+// The two ends' densities of a connection x → y, cos_x·cos_y / (π·|x - y|²) / π: the density
+// with which cosine sampling at x reaches y, over π.
+double connection_density_over_pi(double cos_x, double cos_y, double distance2) {
+    return std::fabs(cos_x * cos_y) / (kPi * kPi * distance2);
+}
+
+// Russian roulette on a contribution before its shadow ray (PathTracer::kShadowRoulette).
+bool survives_roulette(Rgb& value, double threshold, Rng& rng) {
+    const double worth = max_component(value);
+    if (!(worth > 0)) return false;
+    if (worth >= threshold) return true;
+    if (rng.uniform() * threshold >= worth) return false;
+    value *= threshold / worth;
+    return true;
+}
+
+}  // namespace
+
+Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, const Rgb& beta,
+                             double u1, double u2, Rng& rng) const {
+    const double u_pick = rng.uniform();
+    LightSample ls;
+    const Vec3 facing = dot(d, si.n) < 0 ? si.n : -si.n;
+    if (!scene_.lights().sample(si.p, si.prim, u_pick, u1, u2, ls, facing)) return Rgb{0};
+    double bsdf_pdf;
+    const Rgb f_cos = diffuse_f_cos(m, d, si.n, ls.wi, bsdf_pdf);
+    Rgb value = beta * f_cos * ls.emission * (power_heuristic(ls.pdf, bsdf_pdf) / ls.pdf);
+    if (!survives_roulette(value, kShadowRoulette, rng)) return Rgb{0};
+    Ray shadow = spawn_ray(si, ls.wi);
+    shadow.tmax = ls.distance;
+    if (scene_.geometry().occluded(shadow, si.prim, ls.prim)) return Rgb{0};
+    return value;
+}
+
+Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta,
+                        const LightVertex& y, Rng& rng) const {
+    const Vec3 to_y = y.si.p - x.p;
+    const double distance2 = dot(to_y, to_y);
+    if (!(distance2 > 0)) return Rgb{0};
+    const Vec3 w = to_y / std::sqrt(distance2);
+    const double cos_x = dot(w, x.n), cos_y = dot(w, y.si.n);
+    // Reflection only: y must lie on the side x was reached from, x on the side light reached y from.
+    if (cos_x * dot(d, x.n) >= 0 || cos_y * dot(y.d_in, y.si.n) <= 0) return Rgb{0};
+    if (hidden_by_own_sphere(scene_.geometry(), y, x.p)) return Rgb{0};
+    const double density_over_pi = connection_density_over_pi(cos_x, cos_y, distance2);
+    // f_x · G · f_y = albedo_x · albedo_y · cos_x·cos_y / (π²·distance²).
+    Rgb value = beta * m.albedo * y.albedo * y.beta *
+                (density_over_pi * LightTracer::light_side_weight(density_over_pi, y.emitted_ratio));
+    if (!survives_roulette(value, kShadowRoulette, rng)) return Rgb{0};
+    const Vec3 from = offset_ray_origin(x, w), to = offset_ray_origin(y.si, -w);
+    Ray shadow{from, normalize(to - from)};
+    shadow.tmax = length(to - from);
+    if (scene_.geometry().occluded(shadow, x.prim, y.si.prim)) return Rgb{0};
+    return value;
+}
+
+Rgb PathTracer::through_caster(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta,
+                               Rng& rng) const {
+    const double u_pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    Vec3 wi;
+    double pdf, bsdf_pdf;
+    if (!scene_.casters().sample(x.p, u_pick, u1, u2, wi, pdf)) return Rgb{0};
+    const Rgb f_cos = diffuse_f_cos(m, d, x.n, wi, bsdf_pdf);
+    if (is_black(f_cos)) return Rgb{0};
+    Rgb throughput = beta * f_cos * (power_heuristic(pdf, bsdf_pdf) / pdf);
+    Rgb result{0};
+    Ray ray = spawn_ray(x, wi);
+    uint32_t self = x.prim;
+    for (int bounces = 0;; ++bounces) {  // specular vertices behind the ray
+        Hit hit;
+        if (!scene_.geometry().intersect(ray, self, hit)) break;
+        const Material& hm = scene_.material(hit.prim);
+        if (bounces > 0) result += throughput * hm.emission;  // at 0 it is light sampling's
+        if (hm.type == MaterialType::diffuse || bounces == kMaxCasterBounces) break;
+        const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
+        const BsdfSample bs = sample_bsdf(hm, ray.d, si.n, rng);
+        throughput *= bs.weight;
+        if (is_black(throughput)) break;
+        ray = spawn_ray(si, bs.wi);
+        self = hit.prim;
+    }
+    return result;
+}
+
+double PathTracer::bounce_weight(double density_over_pi, const Ray& ray, const SurfaceInteraction& si,
+                                 uint32_t last_specular) const {
+    if (!(density_over_pi > 0)) return 1;
+    const CausticEmitter& emitter = scene_.caustic_emitter();
+    const Vec3 d_out = -ray.d;
+    const double cos_out = dot(d_out, si.n);
+    if (!(cos_out > 0) || !emitter.covers(si.prim, si.p, last_specular)) return 1;
+    const double pdf = emitter.pdf(si.prim, si.p, d_out);
+    if (!(pdf > 0)) return 1;
+    return 1 - LightTracer::light_side_weight(density_over_pi, cos_out / pdf);
+}
+
+Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light, const FirstVertexSamples* first,
+                         DirectView direct) const {
+    PathState path;
+    path.ray = ray;
+    path.first = first;
+    path.direct_view = direct;
+    return trace(path, rng, light);
+}
+
+bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, bool diffuse, const BsdfSample& bs,
+                             Rng& rng) const {
+    path.throughput *= bs.weight;
+    if (is_black(path.throughput)) return false;
+    if (path.depth >= scene_.integrator().rr_depth) {
+        const double survive = std::min(1.0, max_component(path.throughput));
+        if (rng.uniform() >= survive) return false;
+        path.throughput *= 1 / survive;
+    }
+    if (diffuse) {
+        path.caster_pdf = path.chain == 0 && !scene_.casters().empty() ? scene_.casters().pdf(si.p, bs.wi) : 0;
+        path.caster_bsdf_pdf = bs.pdf;
+        path.caster_bounces = 0;
+    } else {
+        ++path.caster_bounces;
+    }
+    path.shape = extend(path.shape, diffuse);
+    path.seen_directly = path.seen_directly && !diffuse;
+    path.specular = bs.specular;
+    path.previous_diffuse = diffuse;
+    path.bsdf_pdf = bs.pdf;
+    path.previous = si.p;
+    path.previous_facing = dot(path.ray.d, si.n) < 0 ? si.n : -si.n;
+    path.self = si.prim;
+    path.ray = spawn_ray(si, bs.wi);
+    ++path.depth;
+    return true;
+}
+
+Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
+    const IntegratorSettings& settings = scene_.integrator();
+    const bool nee = settings.light_sampling && !scene_.lights().empty();
+    const bool light_tracing = scene_.light_tracing();
+    Rgb result{0};
+    for (;;) {
+        const Ray& ray = path.ray;
+        Hit hit;
+        if (!scene_.geometry().intersect(ray, path.self, hit)) {
+            if (path.counts_found_light()) result += path.throughput * scene_.background();
+            break;
+        }
+        const Material& m = scene_.material(hit.prim);
+        const bool diffuse = m.type == MaterialType::diffuse;
+        if (diffuse && path.direct_view == DirectView::alone) {  // the direct view ends here
+            if (m.is_emissive()) result += path.throughput * m.emission;
+            break;
+        }
+        const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
+        const bool traced_from_light = light_tracing && path.shape == PathShape::caustic &&
+                                       scene_.caustic_emitter().covers(hit.prim, si.p, path.self);
+        if (m.is_emissive() && !traced_from_light && path.counts_found_light()) {
+            // Emission found by BSDF sampling; where NEE or a light path could also have
+            // found it, MIS-weight it.
+            double w = 1;
+            if (nee && !path.specular)
+                w = power_heuristic(path.bsdf_pdf, scene_.lights().pdf(path.previous, path.self, si, path.previous_facing));
+            else if (light_tracing && path.specular && path.chain > 0 && path.chain <= kLightVertices)
+                w = bounce_weight(path.chain_density, ray, si, path.self);
+            else if (path.caster_pdf > 0 && path.caster_bounces >= 1 && path.caster_bounces <= kMaxCasterBounces)
+                w = power_heuristic(path.caster_bsdf_pdf, path.caster_pdf);
+            result += path.throughput * m.emission * w;
+        }
+        if (path.depth + 1 >= settings.max_depth) break;
+        const FirstVertexSamples* first = diffuse ? std::exchange(path.first, nullptr) : nullptr;
+        if (diffuse && nee) {
+            const double u1 = first ? first->light[0] : rng.uniform(), u2 = first ? first->light[1] : rng.uniform();
+            result += direct_light(si, ray.d, m, path.throughput, u1, u2, rng);
+        }
+        if (diffuse) {
+            for (int i = 0; i < light.size; ++i)
+                if (path.depth + 1 + light.vertices[i].hits <= settings.max_depth)
+                    result += connect(si, ray.d, m, path.throughput, light.vertices[i], rng);
+            if (light_tracing) {
+                if (path.depth == 0) {
+                    path.chain_density = camera_.area_density(si.p, si.n) / kPi;
+                } else if (path.previous_diffuse) {
+                    const Vec3 from_previous = si.p - path.previous;
+                    path.chain_density = connection_density_over_pi(dot(ray.d, path.previous_facing), dot(ray.d, si.n),
+                                                                    dot(from_previous, from_previous));
+                }
+                path.chain = path.depth == 0 || path.previous_diffuse ? 1 : path.chain > 0 ? path.chain + 1 : 0;
+                if (path.chain == 0 && !scene_.casters().empty())
+                    result += through_caster(si, ray.d, m, path.throughput, rng);
+            }
+        }
+        BsdfSample bs, reflected;
+        if (m.type == MaterialType::glass && path.depth < kSplitDepth && split_glass(m, ray.d, si.n, reflected, bs)) {
+            PathState branch = path;  // with the same stratified numbers for its first diffuse vertex
+            if (extend_path(branch, si, diffuse, reflected, rng)) result += trace(branch, rng, light);
+        } else {
+            bs = first ? sample_diffuse(m, ray.d, si.n, first->bounce[0], first->bounce[1]) : sample_bsdf(m, ray.d, si.n, rng);
+        }
+        if (!extend_path(path, si, diffuse, bs, rng)) break;
+    }
+    return result;
+}
+
+}  // namespace glint

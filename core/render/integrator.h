@@ -1,0 +1,112 @@
+// Unidirectional path tracing: cosine-sampled diffuse bounces, next-event estimation at
+// diffuse surfaces combined with BSDF sampling by the power heuristic, smallpt's mirror and
+// glass, Russian roulette on the path throughput and a hard depth cap.
+//
+// When the scene has light tracing (light_tracer.h), its strategies share the work:
+// - the caustic paths it splats from its first diffuse vertex y (camera → y → specular+ →
+//   light) are left to it;
+// - each diffuse vertex x is connected to the light path's diffuse vertices, and the paths
+//   that both a connection (or a splat of z) and the path tracer's own bounces can find are
+//   weighted between the two by the power heuristic.
+#pragma once
+
+#include "scene/camera.h"
+#include "render/light_tracer.h"
+#include "base/rng.h"
+#include "render/sampler.h"
+#include "scene/scene.h"
+
+namespace glint {
+
+// What the camera sees through specular vertices only: emitters, their images in mirrors and
+// glass, the background. Where that varies across a pixel (the light's edge) it is estimated
+// apart from the rest of the path, from more camera rays (see direct_view.h).
+enum class DirectView {
+    gathered,  // the path gathers it with everything else
+    left_out,  // the path gathers only what it finds after its first diffuse vertex
+    alone      // the path gathers only it, and ends at its first diffuse vertex
+};
+
+// The shape of a camera path so far, for handing caustic paths to light tracing.
+enum class PathShape { camera, diffuse, caustic, other };  // caustic: one diffuse, then specular+
+
+class PathTracer {
+public:
+    PathTracer(const Scene& scene, const Camera& camera) : scene_(scene), camera_(camera) {}
+
+    // Radiance arriving along the camera ray, estimated with random numbers from rng; `light`
+    // is this sample's light path (empty when the scene has no light tracing); `first`, if
+    // given, the numbers the path's first diffuse vertex uses instead of rng's; `direct` how
+    // the path treats what the camera sees through specular vertices only.
+    Rgb radiance(Ray ray, Rng& rng, const LightPath& light = kNoLightPath, const FirstVertexSamples* first = nullptr,
+                 DirectView direct = DirectView::gathered) const;
+
+private:
+    // Where a path is: its next ray, what it carries, the vertex it leaves and how it got there.
+    struct PathState {
+        Ray ray;
+        Rgb throughput{1};
+        int depth = 0;
+        uint32_t self = kNoPrimitive;
+        PathShape shape = PathShape::camera;
+        bool specular = true;  // the camera "samples" its ray like a specular bounce: no MIS
+        bool previous_diffuse = false;
+        double bsdf_pdf = 0;
+        Vec3 previous, previous_facing;
+        // The path's last diffuse vertices as a light path could have made them: v, then
+        // specular+ and diffuse vertices alternating, `chain` diffuse vertices in all (0: none,
+        // because v's predecessor is specular), and the density (over π) with which v's
+        // predecessor, the eye or a diffuse vertex, reaches v. A light path's vertex at v is
+        // weighed against that.
+        int chain = 0;
+        double chain_density = 0;
+        const FirstVertexSamples* first = nullptr;  // until the first diffuse vertex has used them
+        // Since a diffuse vertex light tracing cannot reach (chain 0): the densities with which
+        // its bounce and the CasterSampler pick the direction the path left it by (caster_pdf 0
+        // where it does not apply), and the specular vertices met since.
+        double caster_pdf = 0, caster_bsdf_pdf = 0;
+        int caster_bounces = 0;
+        DirectView direct_view = DirectView::gathered;
+        bool seen_directly = true;  // no diffuse vertex yet: what the path finds belongs to the direct view
+        // Whether light found now counts: the direct view's share depends on the path's part.
+        bool counts_found_light() const { return !(seen_directly && direct_view == DirectView::left_out); }
+    };
+    // Glass met in the first kSplitDepth bounces is split: both the reflection and the
+    // refraction are followed, each weighted by its Fresnel factor, where smallpt's random pick
+    // makes the light's images in a glass ball speckle (see bench/BENCHMARKS.md).
+    static constexpr int kSplitDepth = 2;
+    Rgb trace(PathState path, Rng& rng, const LightPath& light) const;
+    // Moves the path on from si along bs (false: it ends there, by Russian roulette or a black
+    // throughput).
+    bool extend_path(PathState& path, const SurfaceInteraction& si, bool diffuse, const BsdfSample& bs, Rng& rng) const;
+    // Both next strategies end in a shadow ray, and most of their contributions are small: one
+    // worth less than kShadowRoulette (a tenth of white on the display) is tested only with
+    // probability worth / kShadowRoulette and then counted 1/probability times, which keeps the
+    // mean. On smallpt's box this cut 16% of the instructions for 1% more variance.
+    static constexpr double kShadowRoulette = 0.1;
+    // Light arriving from one sampled light point at si (reached along d with throughput beta),
+    // times f·cos, MIS-weighted against BSDF sampling.
+    // (u1, u2) pick the point on the light.
+    Rgb direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, const Rgb& beta, double u1,
+                     double u2, Rng& rng) const;
+    // Light reaching diffuse vertex x (reached along d with throughput beta) through a mirror
+    // or glass sphere picked by the scene's CasterSampler, times f·cos, MIS-weighted against
+    // the bounce: the chain of specular vertices is followed as the path tracer would (Fresnel
+    // picks at random), for at most kMaxCasterBounces vertices.
+    Rgb through_caster(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta, Rng& rng) const;
+    static constexpr int kMaxCasterBounces = 8;
+    // What reaches the eye through diffuse vertex x (reached along d with throughput beta)
+    // from light vertex y, MIS-weighted against the path tracer's bounces.
+    Rgb connect(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta, const LightVertex& y,
+                Rng& rng) const;
+    // The weight of emission found through specular vertices after a diffuse vertex, against
+    // the light path that could also have found it; `density_over_pi` belongs to that light
+    // path's first diffuse vertex (0: no light path could).
+    double bounce_weight(double density_over_pi, const Ray& ray, const SurfaceInteraction& si,
+                         uint32_t last_specular) const;
+
+    const Scene& scene_;
+    const Camera& camera_;
+};
+
+}  // namespace glint

@@ -1,0 +1,93 @@
+#include "render/light_tracer.h"
+
+namespace glint {
+
+void LightTracer::splat(const LightVertex& v, double w) const {
+    const SurfaceInteraction& si = v.si;
+    Camera::Projection proj;
+    if (!camera_.project(si.p, proj)) return;
+    const double cos_eye = dot(si.n, proj.to_eye);
+    if (dot(v.d_in, si.n) * cos_eye >= 0) return;  // the eye is on the other side of the surface
+    Ray shadow = spawn_ray(si, proj.to_eye);
+    shadow.tmax = proj.distance - camera_.near();  // camera rays start `near` from the eye
+    if (scene_.geometry().occluded(shadow, si.prim)) return;
+    // Diffuse f = albedo/π; dω at the eye = |cos| dA / distance².
+    const double pixels = double(film_.width()) * film_.height();
+    const Rgb value = v.beta * v.albedo *
+                      (w * std::fabs(cos_eye) / (kPi * proj.distance * proj.distance) * proj.importance / pixels);
+    // The pixels whose filter footprint holds (fx, fy); y counts from the bottom here.
+    const double margin = filter_margin(filter_);
+    const int x0 = std::max(0, int(std::ceil(proj.fx - 1 - margin)));
+    const int x1 = std::min(film_.width() - 1, int(std::floor(proj.fx + margin)));
+    const int y0 = std::max(0, int(std::ceil(proj.fy - 1 - margin)));
+    const int y1 = std::min(film_.height() - 1, int(std::floor(proj.fy + margin)));
+    for (int row = y0; row <= y1; ++row)
+        for (int x = x0; x <= x1; ++x) {
+            const double f = filter_density(filter_, proj.fx - x, proj.fy - row);
+            if (f > 0) film_.splat(x, film_.height() - 1 - row, value * f);
+        }
+}
+
+bool LightTracer::to_diffuse(Ray ray, uint32_t self, uint32_t light, Rgb& throughput, int& hits, Rng& rng,
+                             SurfaceInteraction& si, Vec3& d_in) const {
+    const IntegratorSettings& settings = scene_.integrator();
+    for (bool first = true; ++hits <= settings.max_depth; first = false) {
+        Hit hit;
+        if (!scene_.geometry().intersect(ray, self, hit)) return false;
+        const Material& m = scene_.material(hit.prim);
+        const bool diffuse = m.type == MaterialType::diffuse;
+        // Other first surfaces are the path tracer's paths (or a connection's).
+        if (first && (diffuse || (light != kNoPrimitive && !scene_.caustic_emitter().is_target(light, hit.prim))))
+            return false;
+        si = scene_.geometry().interaction(ray, hit);
+        d_in = ray.d;
+        if (diffuse) return true;
+        // smallpt's BSDFs carry no η² and Schlick's term uses the outer cosine, so sampling
+        // them from the light side gives the adjoint weights.
+        const BsdfSample bs = sample_bsdf(m, ray.d, si.n, rng);
+        throughput *= bs.weight;
+        if (is_black(throughput)) return false;
+        if (hits > settings.rr_depth) {
+            const double survive = std::min(1.0, max_component(throughput));
+            if (rng.uniform() >= survive) return false;
+            throughput *= 1 / survive;
+        }
+        self = hit.prim;
+        ray = spawn_ray(si, bs.wi);
+    }
+    return false;
+}
+
+LightPath LightTracer::trace(Rng& rng) const {
+    const double u_pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform(),
+                 u4 = rng.uniform();
+    LightPath path;
+    EmittedRay e;
+    if (!scene_.caustic_emitter().sample(u_pick, u1, u2, u3, u4, e)) return path;
+    Rgb throughput{1};
+    int hits = 1;  // the light is the path's first surface hit; the path tracer caps them at max_depth
+    uint32_t self = e.light;
+    Ray ray = e.ray;
+    for (uint32_t light = e.light; path.size < kLightVertices; light = kNoPrimitive) {
+        LightVertex& v = path.vertices[path.size];
+        if (!to_diffuse(ray, self, light, throughput, hits, rng, v.si, v.d_in)) break;
+        const Material& m = scene_.material(v.si.prim);
+        v.beta = e.weight * throughput;
+        v.albedo = m.albedo;
+        v.emitted_ratio = e.emitted_ratio;
+        v.hits = hits;
+        ++path.size;
+        // y's camera-side partner is the eye alone (the path tracer leaves these paths to light
+        // tracing); the later vertices' are weighed against the path tracer's.
+        splat(v, path.size == 1 ? 1 : light_side_weight(camera_.area_density(v.si.p, v.si.n) / kPi, e.emitted_ratio));
+        if (path.size == kLightVertices || hits >= scene_.integrator().max_depth) break;
+        const BsdfSample bs = sample_bsdf(m, v.d_in, v.si.n, rng);
+        throughput *= bs.weight;
+        if (is_black(throughput)) break;
+        self = v.si.prim;
+        ray = spawn_ray(v.si, bs.wi);
+    }
+    return path;
+}
+
+}  // namespace glint

@@ -1,0 +1,87 @@
+// Progressive rendering: a job renders its image in passes of whole samples per pixel on a
+// shared thread pool, reporting after each pass, until it reaches its sample count, its target
+// error estimate or its time limit, or is cancelled.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+
+#include "scene/camera.h"
+#include "render/direct_view.h"
+#include "render/film.h"
+#include "render/filter.h"
+#include "render/integrator.h"
+#include "render/light_tracer.h"
+#include "render/sampler.h"
+#include "render/settings.h"
+#include "base/thread_pool.h"
+
+namespace glint {
+
+struct Progress {
+    uint32_t spp_done = 0;  // samples every pixel has
+    uint32_t spp_target = 0;
+    double seconds = 0;
+    double samples_per_second = 0;
+    double error_estimate = kInfinity;
+    uint64_t dropped = 0;  // samples left out: whole rounds with a NaN or infinite sample
+};
+
+enum class StopReason { completed, target_error, time_limit, cancelled };
+const char* to_string(StopReason reason);
+
+class RenderJob {
+public:
+    RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& settings);
+
+    // Renders until a stop condition, calling on_pass after every pass (from this thread).
+    StopReason run(ThreadPool& pool, const std::function<void(const Progress&)>& on_pass = {});
+    // Thread-safe: the pass in progress stops after the tiles already being rendered.
+    void cancel() { cancelled_ = true; }
+    // Continues from a checkpoint taken between passes: `film` holds samples [first_sample,
+    // first_sample + spp_done) of every pixel, added in sample order, so run() adds the rest in
+    // the order an uninterrupted run would and the sums come out bit-identical. Call before
+    // run(); throws std::invalid_argument if the film or the count does not fit this job.
+    void resume(Film film, uint32_t spp_done);
+
+    // Samples [first, last) of every pixel, added to the film in sample order, a round at a time
+    // (both multiples of samples_per_round). Returns false if the job was stopped (cancelled or
+    // out of time) before every tile was rendered.
+    bool render_pass(ThreadPool& pool, uint32_t first, uint32_t last);
+
+    const Film& film() const { return film_; }
+    const RenderSettings& settings() const { return settings_; }
+    Progress progress() const;
+
+private:
+    using Clock = std::chrono::steady_clock;
+    static constexpr int kTileSize = 16;
+
+    Rgb sample(int x, int y, uint32_t index) const;
+    // The direct view of pixel (x, y) for sample `index` from direct_view_.rays() camera rays.
+    Rgb direct_view(int x, int y, uint32_t index, const PixelSampler& sampler, Rng& rng) const;
+    // A camera ray for sample `index` of pixel (x, y), through the film position `film` picks in
+    // the sample's subpixel (nullptr: two numbers from rng pick it), and a lens point from rng.
+    Ray camera_ray(int x, int y, uint32_t index, const double* film, Rng& rng) const;
+    bool render_tile(size_t tile, uint32_t first, uint32_t last);
+    bool should_stop() const;
+    uint32_t next_pass_size(uint32_t previous) const;
+
+    std::shared_ptr<const Scene> scene_;
+    RenderSettings settings_;
+    Camera camera_;
+    PathTracer tracer_;
+    Film film_;
+    LightTracer light_tracer_;
+    DirectViewSplit direct_view_;
+    bool direct_view_decided_ = false;
+    int tiles_x_, tiles_y_;
+    uint32_t spp_done_ = 0;
+    uint32_t spp_at_start_ = 0;  // samples resumed from, left out of the rate
+    std::atomic<bool> cancelled_{false};
+    Clock::time_point start_{}, deadline_ = Clock::time_point::max();
+};
+
+}  // namespace glint

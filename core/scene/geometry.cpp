@@ -1,0 +1,230 @@
+#include "scene/geometry.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace glint {
+
+Isa best_isa() {
+    static const Isa best = [] {
+        __builtin_cpu_init();  // may run before the constructor that would initialise the CPU model
+        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") ? Isa::avx512 : Isa::avx2;
+    }();
+    return best;
+}
+
+void Geometry::set_isa(Isa isa) {
+    if (isa == Isa::avx512 && best_isa() != Isa::avx512) throw std::invalid_argument("this processor has no AVX-512VL");
+    isa_ = isa;
+}
+
+Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles, Accelerator accelerator,
+                   BvhBuild build)
+    : spheres_(std::move(spheres)), accelerator_(accelerator) {
+    std::vector<PackedTriangle> packed;
+    std::vector<Bounds3> triangle_bounds;
+    packed.reserve(triangles.size());
+    triangle_bounds.reserve(triangles.size());
+    for (const Triangle& input : triangles) {
+        packed.push_back(PackedTriangle::pack(input));
+        const Triangle t = packed.back().unpack();
+        // A zero-area triangle can never be hit (its determinant is 0): leave it out of the tree.
+        // The squared length of the normal is positive exactly when the area is, without a root.
+        const Vec3 n = t.unnormalized_normal();
+        const bool degenerate = !(dot(n, n) > 0);
+        degenerate_ += degenerate;
+        triangle_bounds.push_back(degenerate ? Bounds3{} : t.bounds());
+    }
+    if (accelerator_ == Accelerator::automatic)
+        accelerator_ = spheres_.size() + packed.size() <= kListMaxPrimitives ? Accelerator::list : Accelerator::bvh;
+    if (accelerator_ != Accelerator::bvh) {
+        sphere_list_ = SphereList(spheres_);
+        store_runs(packed, {});
+        return;
+    }
+    std::vector<Bounds3> sphere_bounds;
+    sphere_bounds.reserve(spheres_.size());
+    for (const Sphere& s : spheres_) sphere_bounds.push_back(s.bounds());
+    sphere_bvh_ = Bvh::build(sphere_bounds);
+
+    std::vector<Triangle> unpacked;
+    if (build == BvhBuild::spatial_splits) {
+        unpacked.reserve(packed.size());
+        for (const PackedTriangle& p : packed) unpacked.push_back(p.unpack());
+    }
+    const SpatialSplits splits{unpacked};
+    triangle_bvh_ = Bvh::build(triangle_bounds, build == BvhBuild::spatial_splits ? &splits : nullptr);
+    triangle_at_ = triangle_bvh_.order();
+    position_of_.resize(packed.size());
+    for (uint32_t pos = 0; pos < triangle_at_.size(); ++pos) position_of_[triangle_at_[pos]] = pos;
+    store_runs(packed, triangle_at_);
+    split_triangles_ = triangle_at_.size() > packed.size();
+    triangle_at_.insert(triangle_at_.end(), triangle_run::kPadding, kNoPrimitive);
+}
+
+void Geometry::store_runs(const std::vector<PackedTriangle>& packed, const std::vector<uint32_t>& triangle_at) {
+    triangle_count_ = packed.size();
+    const size_t positions = triangle_at.empty() ? packed.size() : triangle_at.size();
+    run_slot_.assign(positions, uint8_t{1 << 4});
+    triangle_bvh_.for_each_leaf([&](uint32_t first, uint32_t count) {
+        for (uint32_t i = 0; i < count; ++i) run_slot_[first + i] = static_cast<uint8_t>(count << 4 | i);
+    });
+    triangle_runs_.assign(9 * positions + triangle_run::kPadding, 0.0f);
+    // In build order, the triangles' reads jump about: each is prefetched a few positions ahead
+    // (the bunny's whole binned build about 4% faster).
+    constexpr uint32_t kAhead = 16;
+    for (uint32_t pos = 0; pos < positions; ++pos) {
+        if (!triangle_at.empty() && pos + kAhead < positions) __builtin_prefetch(&packed[triangle_at[pos + kAhead]]);
+        triangle_run::put(&triangle_runs_[run_start(pos)], run_size(pos), run_index(pos),
+                          packed[triangle_at.empty() ? pos : triangle_at[pos]]);
+    }
+}
+
+size_t Geometry::memory_bytes() const {
+    return sphere_bvh_.memory_bytes() + sphere_bvh_.order().size() * sizeof(uint32_t) + triangle_bvh_.memory_bytes() +
+           triangle_runs_.size() * sizeof(float) + run_slot_.size() +
+           (triangle_at_.size() + position_of_.size()) * sizeof(uint32_t);
+}
+
+uint32_t Geometry::triangle_index(uint32_t prim) const {
+    if (prim < spheres_.size() || prim - spheres_.size() >= triangle_count_) return kNoPrimitive;
+    return static_cast<uint32_t>(prim - spheres_.size());
+}
+
+uint32_t Geometry::position(uint32_t prim) const {
+    const uint32_t index = triangle_index(prim);
+    return position_of_.empty() || index == kNoPrimitive ? index : position_of_[index];
+}
+
+static_assert(BinaryTree::kMaxLeafSize <= triangle_run::kMaxSize, "a leaf must fit one run test");
+
+uint32_t Geometry::leave_out_key(uint32_t prim) const { return split_triangles_ ? triangle_index(prim) : position(prim); }
+
+// Where each triangle has one position, by table on the position: 0 from four lanes on
+// (kNoPrimitive and positions before `first` included). With split triangles, by comparing the
+// run's four triangle indices, which cost the binned tree 1-4% (bench/BENCHMARKS.md, eighth
+// round), so only there. A lane past the end of a shorter run names no triangle of it, and the
+// run test looks only at the run's own lanes.
+inline unsigned Geometry::lanes_of(uint32_t key, uint32_t first) const {
+    if (!split_triangles_) {
+        static constexpr unsigned kLane[triangle_run::kMaxSize + 1] = {0b1, 0b10, 0b100, 0b1000, 0};
+        return kLane[std::min(key - first, triangle_run::kMaxSize)];
+    }
+    if (key == kNoPrimitive) return 0;  // a camera ray's, and the shared ray sets': no load
+    const __m128i indices = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&triangle_at_[first]));
+    const __m128i same = _mm_cmpeq_epi32(indices, _mm_set1_epi32(static_cast<int>(key)));
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(same)));
+}
+
+// A triangle is flat, so a ray leaving it cannot meet it again; a sphere is told, so that it
+// keeps only the far root (see Sphere::intersect).
+template <bool kAvx512>
+inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
+    const uint32_t skip = leave_out_key(self);
+    const RayShear shear(ray);
+    const RunTest run_test(shear);
+    auto test_run = [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
+        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lanes_of(skip, first), r, hit.triangle);
+        if (i < 0) return false;
+        const uint32_t pos = first + static_cast<uint32_t>(i);
+        hit.t = r.tmax = hit.triangle.t;
+        hit.prim = triangle_id(triangle_at_.empty() ? pos : triangle_at_[pos]);
+        return true;
+    };
+    if (accelerator_ == Accelerator::bvh) return triangle_bvh_.closest<kAvx512>(ray, test_run);
+    bool found = false;
+    for (uint32_t pos = 0; pos < triangle_count_; ++pos) found |= test_run(pos, 1, ray);
+    return found;
+}
+
+// The two instantiations of each triangle query. The target attribute lets GCC inline the
+// AVX2 code (the traversal, the box and run tests) into the AVX-512 function and allocate it
+// there with 32 registers; nothing compiled for AVX-512 is emitted out of line where AVX2 code
+// could link to it. Rounding is the same: the same IEEE operations, and -ffp-contract=off keeps
+// AVX-512F's fused multiply-adds out; the one AVX-512 instruction of the closest-hit copy's own,
+// the limit's rounding after a hit, rounds as the AVX code does (to_float_up_avx512). The leaf
+// lambdas are always inlined: used by both copies, GCC would otherwise call them out of line,
+// leaf test and all, from both.
+bool Geometry::closest_triangle_avx2(Ray& ray, uint32_t self, Hit& hit) const { return closest_triangle<false>(ray, self, hit); }
+bool Geometry::closest_triangle_avx512(Ray& ray, uint32_t self, Hit& hit) const {
+    return closest_triangle<true>(ray, self, hit);
+}
+bool Geometry::triangle_blocks_avx2(const Ray& ray, uint32_t self, uint32_t target) const {
+    return triangle_blocks(ray, self, target);
+}
+bool Geometry::triangle_blocks_avx512(const Ray& ray, uint32_t self, uint32_t target) const {
+    return triangle_blocks(ray, self, target);
+}
+
+bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
+    if (accelerator_ != Accelerator::bvh) {
+        double t;
+        const int prim = sphere_list_.closest(ray, self, t);
+        if (prim < 0) return false;
+        hit = {t, static_cast<uint32_t>(prim), {}};
+        ray.tmax = t;
+        return true;
+    }
+    auto test = [&](uint32_t prim, Ray& r) {
+        double t;
+        if (!spheres_[prim].intersect(r, prim == self, t)) return false;
+        hit = {t, prim, {}};
+        r.tmax = t;
+        return true;
+    };
+    return sphere_bvh_.closest(ray, [&](uint32_t first, uint32_t count, Ray& r) {
+        bool found = false;
+        for (uint32_t pos = first; pos < first + count; ++pos) found |= test(sphere_bvh_.order()[pos], r);
+        return found;
+    });
+}
+
+bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
+    if (!has_finite_origin_and_direction(ray)) return false;  // would visit every node for nothing
+    Ray r = ray;
+    // A mesh scene pays nothing for spheres, not even the call, and a sphere scene nothing for
+    // triangles (not even the ray's shear).
+    const bool triangle_hit = !run_slot_.empty() && (isa_ == Isa::avx512 ? closest_triangle_avx512(r, self, hit)
+                                                                            : closest_triangle_avx2(r, self, hit));
+    return (!spheres_.empty() && closest_sphere(r, self, hit)) || triangle_hit;
+}
+
+inline bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
+    const uint32_t skip = leave_out_key(self), wanted = leave_out_key(target);
+    const RayShear shear(ray);
+    const RunTest run_test(shear);
+    auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) __attribute__((always_inline)) {
+        const unsigned left_out = lanes_of(skip, first) | lanes_of(wanted, first);
+        return run_test.any(&triangle_runs_[9 * size_t(first)], count, left_out, r);
+    };
+    if (accelerator_ == Accelerator::bvh) return triangle_bvh_.any(ray, blocks);
+    for (uint32_t pos = 0; pos < triangle_count_; ++pos)
+        if (blocks(pos, 1, ray)) return true;
+    return false;
+}
+
+bool Geometry::sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
+    if (accelerator_ != Accelerator::bvh) return sphere_list_.any(ray, self, target);
+    return sphere_bvh_.any(ray, [&](uint32_t first, uint32_t count, const Ray& r) {
+        for (uint32_t pos = first; pos < first + count; ++pos) {
+            const uint32_t prim = sphere_bvh_.order()[pos];
+            double t;
+            if (prim != target && spheres_[prim].intersect(r, prim == self, t)) return true;
+        }
+        return false;
+    });
+}
+
+bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
+    if (!has_finite_origin_and_direction(ray)) return false;
+    return (!spheres_.empty() && sphere_blocks(ray, self, target)) ||
+           (!run_slot_.empty() && (isa_ == Isa::avx512 ? triangle_blocks_avx512(ray, self, target)
+                                                        : triangle_blocks_avx2(ray, self, target)));
+}
+
+SurfaceInteraction Geometry::interaction(const Ray& ray, const Hit& hit) const {
+    if (is_sphere(hit.prim)) return spheres_[hit.prim].interaction(ray, hit.t, hit.prim);
+    return triangle(hit.prim).interaction(hit.triangle, hit.prim);
+}
+
+}  // namespace glint

@@ -1,0 +1,125 @@
+// All the scene's surfaces, spheres and triangles in one primitive numbering, and the ray
+// queries the integrator asks of them.
+#pragma once
+
+#include <vector>
+
+#include "accel/bvh.h"
+#include "shapes/sphere.h"
+#include "shapes/sphere_list.h"
+#include "shapes/triangle.h"
+
+namespace glint {
+
+// `list` tests every primitive (smallpt's way); `automatic` picks it for scenes so small that a
+// tree costs more than it saves (smallpt's 9 spheres render 1.35-1.5x faster without one, see
+// bench/BENCHMARKS.md), else the BVH.
+enum class Accelerator { automatic, bvh, list };
+inline constexpr uint32_t kListMaxPrimitives = 16;
+
+// How the triangles' tree is built: binned SAH alone, or with spatial splits besides (see
+// sah_builder.h), which builds slower and traces faster where long or oblique triangles overlap.
+enum class BvhBuild { binned, spatial_splits };
+
+// The instruction set the triangle queries run in. Both paths compute 256-bit vectors and
+// answer bit for bit alike; AVX-512VL's EVEX encoding gives them 32 vector registers instead of
+// AVX2's 16, room for more of the box test's ray constants (GCC still loads some from the stack;
+// bench/BENCHMARKS.md, fourth round).
+enum class Isa { avx2, avx512 };
+// The widest this processor and its operating system support, found once per process.
+Isa best_isa();
+
+struct Hit {
+    double t = kInfinity;
+    uint32_t prim = kNoPrimitive;
+    TriangleHit triangle;  // barycentrics, when prim is a triangle
+};
+
+// Primitive ids: spheres take 0 .. S-1 in order, triangles S .. S+T-1. Triangle vertices are
+// kept in single precision (PackedTriangle); everything reads them through triangle(), so the
+// tests, the shading and the light sampling all see the same triangle.
+//
+// Spheres and triangles get a tree each: the triangles' tree stores them in its leaves' order,
+// so a leaf reads one contiguous run with no index in between, and a scene of one kind pays
+// nothing for the other.
+class Geometry {
+public:
+    Geometry() = default;
+    Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles,
+             Accelerator accelerator = Accelerator::automatic, BvhBuild build = BvhBuild::binned);
+
+    size_t sphere_count() const { return spheres_.size(); }
+    size_t triangle_count() const { return triangle_count_; }
+    uint32_t primitive_count() const { return static_cast<uint32_t>(spheres_.size() + triangle_count_); }
+    bool is_sphere(uint32_t prim) const { return prim < spheres_.size(); }
+    const Sphere& sphere(uint32_t prim) const { return spheres_[prim]; }
+    Triangle triangle(uint32_t prim) const { return packed(position(prim)).unpack(); }
+    uint32_t triangle_id(size_t triangle_index) const {
+        return static_cast<uint32_t>(spheres_.size() + triangle_index);
+    }
+    const Bvh& sphere_bvh() const { return sphere_bvh_; }
+    const Bvh& triangle_bvh() const { return triangle_bvh_; }
+    // The trees, the packed triangles and the maps between primitive ids and tree order.
+    size_t memory_bytes() const;
+    // Zero-area triangles (collinear or coincident vertices): kept in the numbering, never hit.
+    size_t degenerate_triangles() const { return degenerate_; }
+    Accelerator accelerator() const { return accelerator_; }
+    Isa isa() const { return isa_; }
+    // Runs the triangle queries in `isa` (tests compare the paths); it must not exceed best_isa().
+    void set_isa(Isa isa);
+
+    // Closest hit in (ray.tmin, ray.tmax]; `self` is the primitive the ray leaves from.
+    bool intersect(const Ray& ray, uint32_t self, Hit& hit) const;
+    // Whether anything other than `target` blocks the ray in (ray.tmin, ray.tmax].
+    bool occluded(const Ray& ray, uint32_t self, uint32_t target = kNoPrimitive) const;
+    SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
+
+private:
+    // Where triangle `prim` is stored (one of its positions in the tree's order, when there is
+    // a tree), or kNoPrimitive when prim is not a triangle.
+    uint32_t position(uint32_t prim) const;
+    // Triangle `prim`'s index among the triangles, or kNoPrimitive when prim is not a triangle.
+    uint32_t triangle_index(uint32_t prim) const;
+    // What lanes_of() looks for to leave triangle `prim` out: its position, or with split
+    // triangles its index (kNoPrimitive when prim is not a triangle).
+    uint32_t leave_out_key(uint32_t prim) const;
+    // The lanes of the run at position `first` that hold the triangle of leave_out_key() `key`.
+    unsigned lanes_of(uint32_t key, uint32_t first) const;
+    // The triangle at `pos`: its run's size, its index in the run and where the run starts.
+    uint32_t run_size(uint32_t pos) const { return run_slot_[pos] >> 4; }
+    uint32_t run_index(uint32_t pos) const { return run_slot_[pos] & 15; }
+    size_t run_start(uint32_t pos) const { return 9 * size_t(pos - run_index(pos)); }
+    PackedTriangle packed(uint32_t pos) const {
+        return triangle_run::get(&triangle_runs_[run_start(pos)], run_size(pos), run_index(pos));
+    }
+    void store_runs(const std::vector<PackedTriangle>& packed, const std::vector<uint32_t>& triangle_at);
+    // The triangle queries, written once and instantiated for each Isa below.
+    template <bool kAvx512>
+    [[gnu::always_inline]] bool closest_triangle(Ray& ray, uint32_t self, Hit& hit) const;
+    bool closest_triangle_avx2(Ray& ray, uint32_t self, Hit& hit) const;
+    [[gnu::target("avx512f,avx512vl")]] bool closest_triangle_avx512(Ray& ray, uint32_t self, Hit& hit) const;
+    bool closest_sphere(Ray& ray, uint32_t self, Hit& hit) const;
+    [[gnu::always_inline]] bool triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
+    bool triangle_blocks_avx2(const Ray& ray, uint32_t self, uint32_t target) const;
+    [[gnu::target("avx512f,avx512vl")]] bool triangle_blocks_avx512(const Ray& ray, uint32_t self, uint32_t target) const;
+    bool sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
+
+    std::vector<Sphere> spheres_;
+    SphereList sphere_list_;  // the spheres tested without a tree (Accelerator::list)
+    // The triangles in triangle_bvh_'s order when there is a tree, each leaf's one run
+    // (triangle_run layout), every other triangle a run of one.
+    std::vector<float> triangle_runs_;
+    std::vector<uint8_t> run_slot_;            // position -> run size << 4 | index in the run
+    // Tree position -> triangle index (empty: identity), with triangle_run::kPadding entries of
+    // kNoPrimitive after the last, for four-wide loads.
+    std::vector<uint32_t> triangle_at_;
+    std::vector<uint32_t> position_of_;        // triangle index -> tree position (empty: identity)
+    Accelerator accelerator_ = Accelerator::bvh;  // never automatic once built
+    Isa isa_ = best_isa();
+    Bvh sphere_bvh_, triangle_bvh_;
+    size_t triangle_count_ = 0;
+    bool split_triangles_ = false;  // some triangle lies in several leaves (BvhBuild::spatial_splits)
+    size_t degenerate_ = 0;
+};
+
+}  // namespace glint
