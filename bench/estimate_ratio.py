@@ -6,7 +6,7 @@
 Renders a reference with REFERENCE_MULTIPLE (default 32) times the samples and seed 1000 (kept in
 bench/out/estimate/, reused), then the image with seed 1, both with `glint render --hdr` on 2
 threads, and prints the image's estimated RMSE (from glint's last line), the RMSE of its PFM
-against the reference's and their ratio. Like tests/test_error_estimate.cpp, at any size.
+against the reference's and their ratio. Like tests/core/render/test_error_estimate.cpp, at any size.
 """
 import os
 import re

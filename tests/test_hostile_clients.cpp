@@ -7,7 +7,7 @@
 #include <thread>
 
 #include "auth.h"
-#include "raw_http.h"
+#include "support/raw_http.h"
 #include "service.h"
 
 namespace glint {

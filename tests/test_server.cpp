@@ -5,9 +5,9 @@
 
 #include <thread>
 
-#include "raw_http.h"
+#include "support/raw_http.h"
 #include "service.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace glint {
 namespace {

@@ -22,7 +22,7 @@
 #include "base/files.h"
 #include "io/fingerprint.h"
 #include "job_request.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 extern char** environ;
 

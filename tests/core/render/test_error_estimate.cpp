@@ -12,7 +12,7 @@
 // stayed (0.25× at 4096 spp on the checker of tests/test_convergence.cpp).
 #include <gtest/gtest.h>
 
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace glint {
 namespace {

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "render/direct_view.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace glint {
 namespace {

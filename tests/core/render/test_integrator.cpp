@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/files.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace glint {
 namespace {

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "io/image_io.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace glint {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "io/fingerprint.h"
 #include "io/partial_file.h"
-#include "test_support.h"
+#include "support/test_support.h"
 
 namespace glint {
 namespace {
