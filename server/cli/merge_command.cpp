@@ -14,40 +14,34 @@ struct MergeOptions {
 };
 
 int run_merge(const MergeOptions& o) {
-    try {
-        std::vector<Partial> parts;
-        for (const std::string& file : o.parts) {
-            try {
-                parts.push_back(decode_partial(read_file(file, size_t(8) << 30)));
-            } catch (const std::exception& e) {
-                throw PartialError(file + ": " + e.what());
-            }
+    std::vector<Partial> parts;
+    for (const std::string& file : o.parts) {
+        try {
+            parts.push_back(decode_partial(read_file(file, size_t(8) << 30)));
+        } catch (const std::exception& e) {
+            throw PartialError(file + ": " + e.what());
         }
-        const Partial merged = merge_partials(std::move(parts));
-        const Image image = merged.film.mean();
-        write_file(o.output, encode_png(image, merged.encoding));
-        if (!o.hdr.empty()) write_file(o.hdr, encode_pfm(image));
-        std::printf("%s: %zu parts, samples [%u, %u) at %dx%d, estimated RMSE %.4g, "
-                    "%llu samples dropped (rounds with a non-finite one)\n",
-                    o.output.c_str(), o.parts.size(), merged.first_sample, merged.end_sample, merged.film.width(),
-                    merged.film.height(), merged.film.error_estimate(),
-                    static_cast<unsigned long long>(merged.film.dropped()));
-        return 0;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "glint: %s\n", e.what());
-        return 1;
     }
+    const Partial merged = merge_partials(std::move(parts));
+    const Image image = merged.film.mean();
+    write_file(o.output, encode_png(image, merged.encoding));
+    if (!o.hdr.empty()) write_file(o.hdr, encode_pfm(image));
+    std::printf("%s: %zu parts, samples [%u, %u) at %dx%d, estimated RMSE %.4g, "
+                "%llu samples dropped (rounds with a non-finite one)\n",
+                o.output.c_str(), o.parts.size(), merged.first_sample, merged.end_sample, merged.film.width(),
+                merged.film.height(), merged.film.error_estimate(), static_cast<unsigned long long>(merged.film.dropped()));
+    return 0;
 }
 
 }  // namespace
 
 std::function<int()> add_merge_command(CLI::App& app) {
-    auto o = std::make_shared<MergeOptions>();
-    CLI::App* cmd = app.add_subcommand("merge", "Merge the partial files of one job into its image");
-    cmd->add_option("output", o->output, "PNG file to write")->required();
-    cmd->add_option("parts", o->parts, "Partial files (glint render --partial)")->required();
-    cmd->add_option("--hdr", o->hdr, "Also write the linear image as PFM");
-    return [o] { return run_merge(*o); };
+    const auto declare = [](CLI::App& cmd, MergeOptions& o) {
+        cmd.add_option("output", o.output, "PNG file to write")->required();
+        cmd.add_option("parts", o.parts, "Partial files (glint render --partial)")->required();
+        cmd.add_option("--hdr", o.hdr, "Also write the linear image as PFM");
+    };
+    return add_command<MergeOptions>(app, "merge", "Merge the partial files of one job into its image", declare, run_merge);
 }
 
 }  // namespace glint

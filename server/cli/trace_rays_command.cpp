@@ -46,50 +46,47 @@ void trace(const Geometry& geometry, const std::vector<RayRecord>& rays, bool an
 }
 
 int run_trace_rays(const TraceOptions& o) {
-    try {
-        const ObjMesh mesh = load_obj(o.mesh, size_t(1) << 30);
-        const std::vector<RayRecord> rays = read_rays(o.rays);
-        auto start = std::chrono::steady_clock::now();
-        const Geometry geometry({}, to_triangles(mesh), Accelerator::bvh);
-        const double build = seconds_since(start);
-        ThreadPool pool(o.threads);
-        std::vector<HitRecord> hits(rays.size());
-        std::vector<double> times;
-        for (int i = 0; i < o.repeat; ++i) {
-            start = std::chrono::steady_clock::now();
-            trace(geometry, rays, o.any_hit, pool, hits);
-            times.push_back(seconds_since(start));
-        }
-        std::sort(times.begin(), times.end());
-        const double median = times[times.size() / 2];
-        const auto hit_count = std::count_if(hits.begin(), hits.end(), [](const HitRecord& h) { return h.prim != kNoPrimitive; });
-        if (!o.output.empty()) write_hits(o.output, hits);
-        const double triangles = double(mesh.triangles.size());
-        std::printf("triangles %zu  build %.1f ms  nodes %zu  %.1f BVH node bytes/triangle  %.1f with the triangles\n",
-                    mesh.triangles.size(), build * 1e3, geometry.triangle_bvh().nodes().size(),
-                    double(geometry.triangle_bvh().memory_bytes()) / triangles, double(geometry.memory_bytes()) / triangles);
-        std::printf("rays %zu  %s  hits %td  threads %u  median of %d: %.3f s  %.2f Mrays/s\n", rays.size(),
-                    o.any_hit ? "any-hit" : "closest-hit", hit_count, pool.size(), o.repeat, median,
-                    double(rays.size()) / median / 1e6);
-        return 0;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "glint: %s\n", e.what());
-        return 1;
+    const ObjMesh mesh = load_obj(o.mesh, size_t(1) << 30);
+    const std::vector<RayRecord> rays = read_rays(o.rays);
+    auto start = std::chrono::steady_clock::now();
+    const Geometry geometry({}, to_triangles(mesh), Accelerator::bvh);
+    const double build = seconds_since(start);
+    ThreadPool pool(o.threads);
+    std::vector<HitRecord> hits(rays.size());
+    std::vector<double> times;
+    for (int i = 0; i < o.repeat; ++i) {
+        start = std::chrono::steady_clock::now();
+        trace(geometry, rays, o.any_hit, pool, hits);
+        times.push_back(seconds_since(start));
     }
+    std::sort(times.begin(), times.end());
+    const double median = times[times.size() / 2];
+    const auto hit_count = std::count_if(hits.begin(), hits.end(), [](const HitRecord& h) { return h.prim != kNoPrimitive; });
+    if (!o.output.empty()) write_hits(o.output, hits);
+    const double triangles = double(mesh.triangles.size());
+    std::printf("triangles %zu  build %.1f ms  nodes %zu  %.1f BVH node bytes/triangle  %.1f with the triangles\n",
+                mesh.triangles.size(), build * 1e3, geometry.triangle_bvh().nodes().size(),
+                double(geometry.triangle_bvh().memory_bytes()) / triangles, double(geometry.memory_bytes()) / triangles);
+    std::printf("rays %zu  %s  hits %td  threads %u  median of %d: %.3f s  %.2f Mrays/s\n", rays.size(),
+                o.any_hit ? "any-hit" : "closest-hit", hit_count, pool.size(), o.repeat, median,
+                double(rays.size()) / median / 1e6);
+    return 0;
 }
 
 }  // namespace
 
 std::function<int()> add_trace_rays_command(CLI::App& app) {
-    auto o = std::make_shared<TraceOptions>();
-    CLI::App* cmd = app.add_subcommand("trace-rays", "Trace a ray file against an OBJ mesh (BVH benchmark)");
-    cmd->add_option("mesh", o->mesh, "OBJ mesh")->required();
-    cmd->add_option("rays", o->rays, "Ray file (RAYS0001)")->required();
-    cmd->add_option("-o,--output", o->output, "Hit file to write (HITS0001)");
-    cmd->add_option("--threads", o->threads, "Threads (0: all cores)");
-    cmd->add_option("--repeat", o->repeat, "Trace the set this many times and report the median")->check(CLI::PositiveNumber);
-    cmd->add_flag("--any-hit", o->any_hit, "Occlusion queries instead of closest hits (t = 0 marks a hit)");
-    return [o] { return run_trace_rays(*o); };
+    const auto declare = [](CLI::App& cmd, TraceOptions& o) {
+        cmd.add_option("mesh", o.mesh, "OBJ mesh")->required();
+        cmd.add_option("rays", o.rays, "Ray file (RAYS0001)")->required();
+        cmd.add_option("-o,--output", o.output, "Hit file to write (HITS0001)");
+        cmd.add_option("--threads", o.threads, "Threads (0: all cores)");
+        cmd.add_option("--repeat", o.repeat, "Trace the set this many times and report the median")
+            ->check(CLI::PositiveNumber);
+        cmd.add_flag("--any-hit", o.any_hit, "Occlusion queries instead of closest hits (t = 0 marks a hit)");
+    };
+    return add_command<TraceOptions>(app, "trace-rays", "Trace a ray file against an OBJ mesh (BVH benchmark)", declare,
+                                     run_trace_rays);
 }
 
 }  // namespace glint
