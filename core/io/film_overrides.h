@@ -41,7 +41,8 @@ struct FilmOverrides {
 };
 
 // Applies the overrides to `settings`, then checks the result with check_settings().
-void apply_film_overrides(const FilmOverrides& overrides, RenderSettings& settings, const SceneLimits& limits);
+void apply_film_overrides(const FilmOverrides& overrides, RenderSettings& settings,
+                          const SceneLimits& limits);
 
 // Checks settings after the scene file and any overrides; throws SceneError naming the field.
 void check_settings(const RenderSettings& settings, const SceneLimits& limits);

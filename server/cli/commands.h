@@ -31,7 +31,8 @@ int run_reporting_errors(Work&& work) {
 // Adds subcommand `name` whose options `declare(command, options)` binds to an Options; the
 // returned function runs `run(options)` under run_reporting_errors.
 template <typename Options, typename Declare, typename Run>
-std::function<int()> add_command(CLI::App& app, const char* name, const char* description, Declare declare, Run run) {
+std::function<int()> add_command(CLI::App& app, const char* name, const char* description,
+                                 Declare declare, Run run) {
     auto options = std::make_shared<Options>();
     declare(*app.add_subcommand(name, description), *options);
     return [options, run] { return run_reporting_errors([&] { return run(*options); }); };

@@ -28,8 +28,9 @@ int run_merge(const MergeOptions& o) {
     if (!o.hdr.empty()) write_file(o.hdr, encode_pfm(image));
     std::printf("%s: %zu parts, samples [%u, %u) at %dx%d, estimated RMSE %.4g, "
                 "%llu samples dropped (rounds with a non-finite one)\n",
-                o.output.c_str(), o.parts.size(), merged.first_sample, merged.end_sample, merged.film.width(),
-                merged.film.height(), merged.film.error_estimate(), static_cast<unsigned long long>(merged.film.dropped()));
+                o.output.c_str(), o.parts.size(), merged.first_sample, merged.end_sample,
+                merged.film.width(), merged.film.height(), merged.film.error_estimate(),
+                static_cast<unsigned long long>(merged.film.dropped()));
     return 0;
 }
 
@@ -41,7 +42,8 @@ std::function<int()> add_merge_command(CLI::App& app) {
         cmd.add_option("parts", o.parts, "Partial files (glint render --partial)")->required();
         cmd.add_option("--hdr", o.hdr, "Also write the linear image as PFM");
     };
-    return add_command<MergeOptions>(app, "merge", "Merge the partial files of one job into its image", declare, run_merge);
+    return add_command<MergeOptions>(
+        app, "merge", "Merge the partial files of one job into its image", declare, run_merge);
 }
 
 }  // namespace glint

@@ -61,12 +61,15 @@ int run_trace_rays(const TraceOptions& o) {
     }
     std::sort(times.begin(), times.end());
     const double median = times[times.size() / 2];
-    const auto hit_count = std::count_if(hits.begin(), hits.end(), [](const HitRecord& h) { return h.prim != kNoPrimitive; });
+    const auto hit_count = std::count_if(hits.begin(), hits.end(),
+                                         [](const HitRecord& h) { return h.prim != kNoPrimitive; });
     if (!o.output.empty()) write_hits(o.output, hits);
     const double triangles = double(mesh.triangles.size());
-    std::printf("triangles %zu  build %.1f ms  nodes %zu  %.1f BVH node bytes/triangle  %.1f with the triangles\n",
-                mesh.triangles.size(), build * 1e3, geometry.triangle_bvh().nodes().size(),
-                double(geometry.triangle_bvh().memory_bytes()) / triangles, double(geometry.memory_bytes()) / triangles);
+    std::printf(
+        "triangles %zu  build %.1f ms  nodes %zu  %.1f BVH node bytes/triangle  %.1f with the triangles\n",
+        mesh.triangles.size(), build * 1e3, geometry.triangle_bvh().nodes().size(),
+        double(geometry.triangle_bvh().memory_bytes()) / triangles,
+        double(geometry.memory_bytes()) / triangles);
     std::printf("rays %zu  %s  hits %td  threads %u  median of %d: %.3f s  %.2f Mrays/s\n", rays.size(),
                 o.any_hit ? "any-hit" : "closest-hit", hit_count, pool.size(), o.repeat, median,
                 double(rays.size()) / median / 1e6);
@@ -83,10 +86,12 @@ std::function<int()> add_trace_rays_command(CLI::App& app) {
         cmd.add_option("--threads", o.threads, "Threads (0: all cores)");
         cmd.add_option("--repeat", o.repeat, "Trace the set this many times and report the median")
             ->check(CLI::PositiveNumber);
-        cmd.add_flag("--any-hit", o.any_hit, "Occlusion queries instead of closest hits (t = 0 marks a hit)");
+        cmd.add_flag("--any-hit", o.any_hit,
+                     "Occlusion queries instead of closest hits (t = 0 marks a hit)");
     };
-    return add_command<TraceOptions>(app, "trace-rays", "Trace a ray file against an OBJ mesh (BVH benchmark)", declare,
-                                     run_trace_rays);
+    return add_command<TraceOptions>(app, "trace-rays",
+                                     "Trace a ray file against an OBJ mesh (BVH benchmark)",
+                                     declare, run_trace_rays);
 }
 
 }  // namespace glint

@@ -17,7 +17,8 @@ int status_of(ServiceError::Kind kind) {
 
 }  // namespace
 
-void send_error(httplib::Response& res, int status, const std::string& message, const std::string& path) {
+void send_error(httplib::Response& res, int status, const std::string& message,
+                const std::string& path) {
     res.status = status;
     nlohmann::json body = {{"error", message}};
     if (!path.empty()) body["path"] = path;

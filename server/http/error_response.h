@@ -10,7 +10,8 @@
 
 namespace glint {
 
-void send_error(httplib::Response& res, int status, const std::string& message, const std::string& path = "");
+void send_error(httplib::Response& res, int status, const std::string& message,
+                const std::string& path = "");
 // 400 malformed, 422 invalid, 404 not found, 429 busy (with Retry-After).
 void send_error(httplib::Response& res, const ServiceError& error);
 

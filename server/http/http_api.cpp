@@ -44,8 +44,13 @@ std::string reason(int status) {
 
 }  // namespace
 
-HttpApi::HttpApi(JobManager& jobs, ThreadPool& pool, const ServiceConfig& service, HttpConfig config)
-    : jobs_(jobs), pool_(pool), scenes_(service.scenes), scene_limits_(service.scene), config_(std::move(config)) {}
+HttpApi::HttpApi(JobManager& jobs, ThreadPool& pool, const ServiceConfig& service,
+                 HttpConfig config)
+    : jobs_(jobs),
+      pool_(pool),
+      scenes_(service.scenes),
+      scene_limits_(service.scene),
+      config_(std::move(config)) {}
 
 std::shared_ptr<Job> HttpApi::job_or_404(const httplib::Request& req, httplib::Response& res) const {
     auto job = jobs_.find(req.matches[1]);
@@ -210,7 +215,9 @@ void HttpApi::install_hooks(httplib::Server& server) {
         [request_timeout = config_.request_timeout](const httplib::Request&, httplib::Response& res) {
             if (GuardedServer::request_timed_out()) {
                 res.set_header("Connection", "close");  // GuardedServer closes it
-                send_error(res, 408, "request not received within " + std::to_string(request_timeout.count()) + " ms");
+                send_error(res, 408,
+                           "request not received within " +
+                               std::to_string(request_timeout.count()) + " ms");
             } else if (res.body.empty()) {
                 send_error(res, res.status, reason(res.status));
             } else {
@@ -296,7 +303,8 @@ void HttpApi::install_other_routes(httplib::Server& server) {
     // Last, so that it only gets what no route above matched.
     if (!std::filesystem::is_directory(config_.web))
         spdlog::warn("web folder {} not found: the page is not served", config_.web.string());
-    server.Get("/.*", [this](const Req& req, Res& res) { serve_static_file(config_.web, req, res); });
+    server.Get("/.*",
+               [this](const Req& req, Res& res) { serve_static_file(config_.web, req, res); });
 }
 
 }  // namespace glint

@@ -25,18 +25,22 @@ auto load_checked(F&& f) -> decltype(f()) {
     }
 }
 
-constexpr FilmInteger kOverridable[] = {FilmInteger::width, FilmInteger::height, FilmInteger::spp, FilmInteger::seed};
+constexpr FilmInteger kOverridable[] = {FilmInteger::width, FilmInteger::height, FilmInteger::spp,
+                                        FilmInteger::seed};
 
 void check_preset_fields(const nlohmann::json& request) {
     for (const auto& item : request.items()) {
         bool known = item.key() == "preset";
         for (FilmInteger field : kOverridable) known |= item.key() == film_key(field);
-        if (!known) throw InvalidRequest("unknown field (expected one of: preset, width, height, spp, seed)", item.key());
+        if (!known)
+            throw InvalidRequest(
+                "unknown field (expected one of: preset, width, height, spp, seed)", item.key());
     }
 }
 
 // The request's value of `field` if it has one, an integer within the field's range.
-std::optional<int64_t> film_integer(const nlohmann::json& request, FilmInteger field, const SceneLimits& limits) {
+std::optional<int64_t> film_integer(const nlohmann::json& request, FilmInteger field,
+                                    const SceneLimits& limits) {
     const char* key = film_key(field);
     if (!request.contains(key)) return std::nullopt;
     const nlohmann::json& v = request.at(key);
@@ -76,17 +80,21 @@ std::filesystem::path preset_path(const std::filesystem::path& scenes, const std
     return std::filesystem::is_regular_file(file) ? file : std::filesystem::path{};
 }
 
-LoadedScene parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits) {
+LoadedScene parse_job_request(const std::string& body, const std::filesystem::path& scenes,
+                              const SceneLimits& limits) {
     nlohmann::json request;
     try {
         // Bounded like the scene parser: 16 MiB of '[' would otherwise build 16 M nested arrays.
-        request = nlohmann::json::parse(body, [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-            if (depth > kMaxJsonDepth)
-                throw MalformedRequest("JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
-            return true;
-        });
+        request = nlohmann::json::parse(
+            body, [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+                if (depth > kMaxJsonDepth)
+                    throw MalformedRequest("JSON nested deeper than " +
+                                           std::to_string(kMaxJsonDepth) + " levels");
+                return true;
+            });
     } catch (const nlohmann::json::exception&) {  // syntax, or a number out of range (1e999)
-        load_checked([&] { return parse_scene(body, scenes, limits); });  // the scene parser's message
+        load_checked(
+            [&] { return parse_scene(body, scenes, limits); });  // the scene parser's message
     }
     // Both paths end with check_settings(): parse_scene's own, or apply_film_overrides'.
     return request.is_object() && request.contains("preset")
@@ -103,7 +111,8 @@ nlohmann::json list_presets(const std::filesystem::path& scenes) {
     nlohmann::json presets = nlohmann::json::array();
     for (const auto& file : files) {
         try {
-            const nlohmann::json scene = nlohmann::json::parse(read_file(file.string(), size_t(16) << 20));
+            const nlohmann::json scene =
+                nlohmann::json::parse(read_file(file.string(), size_t(16) << 20));
             const nlohmann::json film = scene.value("film", nlohmann::json::object());
             presets.push_back({{"name", file.stem().string()},
                                {"description", scene.value("description", "")},

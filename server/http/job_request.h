@@ -14,7 +14,8 @@
 namespace glint {
 
 // Throws MalformedRequest, InvalidRequest or NotFound (an unknown preset).
-LoadedScene parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits);
+LoadedScene parse_job_request(const std::string& body, const std::filesystem::path& scenes,
+                              const SceneLimits& limits);
 
 // The scenes folder's *.json files, by name (file stem), with their descriptions and film sizes.
 nlohmann::json list_presets(const std::filesystem::path& scenes);

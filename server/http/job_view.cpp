@@ -20,11 +20,12 @@ nlohmann::json job_status(const Job& job) {
         {"height", job.settings().height},
         {"eta", eta},
         {"frame", s.frame},
-        {"urls", {{"self", self},
-                  {"png", self + "/image.png"},
-                  {"pfm", self + "/image.pfm"},
-                  {"stream", self + "/stream"},
-                  {"events", self + "/events"}}},
+        {"urls",
+         {{"self", self},
+          {"png", self + "/image.png"},
+          {"pfm", self + "/image.pfm"},
+          {"stream", self + "/stream"},
+          {"events", self + "/events"}}},
     });
     if (!s.error.empty()) j["error"] = s.error;
     return j;

@@ -17,7 +17,8 @@ const char* to_string(JobState state) {
 }
 
 JobState job_state_named(const std::string& name) {
-    for (JobState s : {JobState::queued, JobState::running, JobState::done, JobState::cancelled, JobState::failed})
+    for (JobState s : {JobState::queued, JobState::running, JobState::done, JobState::cancelled,
+                       JobState::failed})
         if (name == to_string(s)) return s;
     throw std::invalid_argument("unknown state \"" + name + "\"");
 }

@@ -22,7 +22,8 @@ Progress progress_from_json(const json& j) {
     p.spp_target = j.at("spp_target").get<uint32_t>();
     p.seconds = j.at(names.seconds).get<double>();
     p.samples_per_second = j.at("samples_per_second").get<double>();
-    p.error_estimate = j.at("error_estimate").is_null() ? kInfinity : j.at("error_estimate").get<double>();
+    p.error_estimate =
+        j.at("error_estimate").is_null() ? kInfinity : j.at("error_estimate").get<double>();
     p.dropped = j.at(names.dropped).get<uint64_t>();
     return p;
 }

@@ -38,7 +38,8 @@ struct ServiceConfig {
     size_t max_finished = 64;
     // What one job may ask for: tighter than the scene loader's defaults, since every client
     // shares this process's memory and a job keeps its film (128 bytes a pixel) in it.
-    SceneLimits scene{.max_dimension = 4096, .max_pixels = int64_t(4096) * 4096, .max_spp = 1u << 16};
+    SceneLimits scene{
+        .max_dimension = 4096, .max_pixels = int64_t(4096) * 4096, .max_spp = 1u << 16};
     StoreConfig store;
 };
 

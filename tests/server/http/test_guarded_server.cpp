@@ -25,13 +25,16 @@ constexpr auto kPatience = 30s;  // generous bound for any answer the test waits
 
 // A server's configuration for these tests: presets from scenes/, one render thread, a free port.
 struct Config {
-    ServiceConfig service{.scenes = GLINT_SCENES_DIR, .threads = 1};
-    HttpConfig http{.port = 0};
+    ServiceConfig service;
+    HttpConfig http;
 };
 
 Config config_with(const std::filesystem::path& web = GLINT_WEB_DIR) {
     Config config;
+    config.service.scenes = GLINT_SCENES_DIR;
+    config.service.threads = 1;
     config.http.web = web;
+    config.http.port = 0;
     return config;
 }
 

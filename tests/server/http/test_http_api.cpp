@@ -135,13 +135,18 @@ TEST_F(Server, BadInputGetsAStatusAndAJsonBody) {
 }
 
 TEST_F(Server, OversizedBodiesGet413) {
-    start({}, HttpConfig{.max_body_bytes = 1000});
+    HttpConfig http;
+    http.max_body_bytes = 1000;
+    start({}, http);
     const json body = post("/jobs", R"({"description": ")" + std::string(5000, 'x') + R"("})", 413);
     EXPECT_EQ(body["error"], "request body too large");
 }
 
 TEST_F(Server, AFullQueueGets429WithRetryAfter) {
-    start(ServiceConfig{.max_running = 1, .max_queued = 1});
+    ServiceConfig service;
+    service.max_running = 1;
+    service.max_queued = 1;
+    start(service);
     const std::string slow = R"({"preset": "cornell", "width": 64, "height": 48, "spp": 65536})";
     const std::string first = post("/jobs", slow, 202)["id"];
     for (int i = 0; i < 100 && get_json("/jobs/" + first)["state"] == "queued"; ++i) std::this_thread::sleep_for(20ms);
@@ -273,7 +278,7 @@ TEST_F(Server, ServesTheWebPage) {
     ASSERT_TRUE(res);
     EXPECT_EQ(res->status, 200);
     EXPECT_NE(res->body.find("<title>glint</title>"), std::string::npos);
-    EXPECT_EQ(client_->Get("/../CMakeLists.txt")->status, 403);  // see test_hostile_clients.cpp
+    EXPECT_EQ(client_->Get("/../CMakeLists.txt")->status, 403);  // see test_guarded_server.cpp
 }
 
 }  // namespace
