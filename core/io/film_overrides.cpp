@@ -32,13 +32,8 @@ IntegerRange film_range(FilmInteger field, const SceneLimits& limits) {
 }
 
 const char* film_key(FilmInteger field) {
-    switch (field) {
-        case FilmInteger::width: return "width";
-        case FilmInteger::height: return "height";
-        case FilmInteger::spp: return "spp";
-        case FilmInteger::seed: return "seed";
-    }
-    return "?";
+    static constexpr const char* kKeys[] = {"width", "height", "spp", "seed"};  // enum order
+    return kKeys[size_t(field)];
 }
 
 Encoding encoding_named(const std::string& name) {

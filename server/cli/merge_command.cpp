@@ -13,6 +13,12 @@ struct MergeOptions {
     std::vector<std::string> parts;
 };
 
+void declare_options(CLI::App& cmd, MergeOptions& o) {
+    cmd.add_option("output", o.output, "PNG file to write")->required();
+    cmd.add_option("parts", o.parts, "Partial files (glint render --partial)")->required();
+    cmd.add_option("--hdr", o.hdr, "Also write the linear image as PFM");
+}
+
 int run_merge(const MergeOptions& o) {
     std::vector<Partial> parts;
     for (const std::string& file : o.parts) {
@@ -37,13 +43,8 @@ int run_merge(const MergeOptions& o) {
 }  // namespace
 
 std::function<int()> add_merge_command(CLI::App& app) {
-    const auto declare = [](CLI::App& cmd, MergeOptions& o) {
-        cmd.add_option("output", o.output, "PNG file to write")->required();
-        cmd.add_option("parts", o.parts, "Partial files (glint render --partial)")->required();
-        cmd.add_option("--hdr", o.hdr, "Also write the linear image as PFM");
-    };
-    return add_command<MergeOptions>(
-        app, "merge", "Merge the partial files of one job into its image", declare, run_merge);
+    return add_command<MergeOptions>(app, "merge", "Merge the partial files of one job into its image",
+                                     declare_options, run_merge);
 }
 
 }  // namespace glint

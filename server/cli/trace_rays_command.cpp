@@ -21,6 +21,16 @@ struct TraceOptions {
     bool any_hit = false;
 };
 
+void declare_options(CLI::App& cmd, TraceOptions& o) {
+    cmd.add_option("mesh", o.mesh, "OBJ mesh")->required();
+    cmd.add_option("rays", o.rays, "Ray file (RAYS0001)")->required();
+    cmd.add_option("-o,--output", o.output, "Hit file to write (HITS0001)");
+    cmd.add_option("--threads", o.threads, "Threads (0: all cores)");
+    cmd.add_option("--repeat", o.repeat, "Trace the set this many times and report the median")
+        ->check(CLI::PositiveNumber);
+    cmd.add_flag("--any-hit", o.any_hit, "Occlusion queries instead of closest hits (t = 0 marks a hit)");
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -79,19 +89,9 @@ int run_trace_rays(const TraceOptions& o) {
 }  // namespace
 
 std::function<int()> add_trace_rays_command(CLI::App& app) {
-    const auto declare = [](CLI::App& cmd, TraceOptions& o) {
-        cmd.add_option("mesh", o.mesh, "OBJ mesh")->required();
-        cmd.add_option("rays", o.rays, "Ray file (RAYS0001)")->required();
-        cmd.add_option("-o,--output", o.output, "Hit file to write (HITS0001)");
-        cmd.add_option("--threads", o.threads, "Threads (0: all cores)");
-        cmd.add_option("--repeat", o.repeat, "Trace the set this many times and report the median")
-            ->check(CLI::PositiveNumber);
-        cmd.add_flag("--any-hit", o.any_hit,
-                     "Occlusion queries instead of closest hits (t = 0 marks a hit)");
-    };
     return add_command<TraceOptions>(app, "trace-rays",
                                      "Trace a ray file against an OBJ mesh (BVH benchmark)",
-                                     declare, run_trace_rays);
+                                     declare_options, run_trace_rays);
 }
 
 }  // namespace glint
