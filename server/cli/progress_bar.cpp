@@ -4,13 +4,15 @@
 
 #include <string>
 
+#include "service/progress_json.h"
+
 namespace glint {
 
 ProgressBar::ProgressBar(std::FILE* out) : out_(out), interactive_(isatty(fileno(out)) != 0) {}
 
 void ProgressBar::update(const Progress& p) {
     const double fraction = p.spp_target > 0 ? double(p.spp_done) / p.spp_target : 1;
-    const double eta = p.spp_done > 0 ? p.seconds * (p.spp_target - p.spp_done) / p.spp_done : 0;
+    const double eta = eta_seconds(p);
     char figures[160];
     std::snprintf(figures, sizeof figures, "%u/%u spp  %.1fs  ETA %.1fs  %.2f Msamples/s  error %.4g", p.spp_done,
                   p.spp_target, p.seconds, eta, p.samples_per_second / 1e6, p.error_estimate);

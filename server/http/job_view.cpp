@@ -9,8 +9,7 @@ std::string job_url(const std::string& id) { return "/jobs/" + id; }
 nlohmann::json job_status(const Job& job) {
     const JobSnapshot s = job.snapshot();
     const Progress& p = s.progress;
-    const bool active = s.state == JobState::running && p.spp_done > 0;
-    const double eta = active ? p.seconds * (p.spp_target - p.spp_done) / p.spp_done : 0;
+    const double eta = s.state == JobState::running ? eta_seconds(p) : 0;
     const std::string self = job_url(job.id());
     nlohmann::json j = progress_json(p, {.seconds = "elapsed", .dropped = "dropped_samples"});
     j.update({

@@ -15,6 +15,10 @@ json progress_json(const Progress& p, const ProgressNames& names) {
             {names.dropped, p.dropped}};
 }
 
+double eta_seconds(const Progress& p) {
+    return p.spp_done > 0 ? p.seconds * (p.spp_target - p.spp_done) / p.spp_done : 0;
+}
+
 Progress progress_from_json(const json& j) {
     const ProgressNames names;
     Progress p;

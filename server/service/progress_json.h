@@ -16,6 +16,10 @@ struct ProgressNames {
 
 // spp_done, spp_target, seconds, samples_per_second, error_estimate (null while infinite), dropped.
 nlohmann::json progress_json(const Progress& progress, const ProgressNames& names = {});
+// Seconds left at the rate so far: what the API's status and the terminal's progress bar show
+// as ETA; 0 before the first pass.
+double eta_seconds(const Progress& progress);
+
 // What progress_json(p) wrote, with the default names; throws nlohmann::json::exception.
 Progress progress_from_json(const nlohmann::json& j);
 
