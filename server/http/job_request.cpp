@@ -93,8 +93,8 @@ LoadedScene parse_job_request(const std::string& body, const std::filesystem::pa
                 return true;
             });
     } catch (const nlohmann::json::exception&) {  // syntax, or a number out of range (1e999)
-        load_checked(
-            [&] { return parse_scene(body, scenes, limits); });  // the scene parser's message
+        // Throws with the scene parser's message for it.
+        load_checked([&] { return parse_scene(body, scenes, limits); });
     }
     // Both paths end with check_settings(): parse_scene's own, or apply_film_overrides'.
     return request.is_object() && request.contains("preset")
