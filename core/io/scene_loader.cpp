@@ -154,17 +154,22 @@ private:
     RenderSettings parse_film(const At& at, Rgb& background) const {
         at.expect_object({"width", "height", "spp", "filter", "sampler", "background", "encoding", "seed"});
         RenderSettings s;
-        if (at.has("width")) s.width = int(at["width"].integer(1, limits_.max_dimension));
-        if (at.has("height")) s.height = int(at["height"].integer(1, limits_.max_dimension));
-        if (at.has("spp")) s.spp = uint32_t(at["spp"].integer(1, limits_.max_spp));
+        if (at.has("width")) s.width = int(film_integer(at, FilmInteger::width));
+        if (at.has("height")) s.height = int(film_integer(at, FilmInteger::height));
+        if (at.has("spp")) s.spp = uint32_t(film_integer(at, FilmInteger::spp));
         if (at.has("filter")) s.filter = at["filter"].choice({"tent", "box"}) == "tent" ? Filter::tent : Filter::box;
         if (at.has("sampler"))
             s.sampler = at["sampler"].choice({"sobol", "independent"}) == "sobol" ? Sampler::sobol : Sampler::independent;
         if (at.has("background")) background = at["background"].colour(kMaxEmission);
         if (at.has("encoding"))
-            s.encoding = at["encoding"].choice({"gamma2.2", "srgb"}) == "srgb" ? Encoding::srgb : Encoding::gamma22;
-        if (at.has("seed")) s.seed = uint64_t(at["seed"].integer(0, INT64_MAX));
+            s.encoding = encoding_named(at["encoding"].choice({"gamma2.2", "srgb"}));
+        if (at.has("seed")) s.seed = uint64_t(film_integer(at, FilmInteger::seed));
         return s;
+    }
+
+    int64_t film_integer(const At& film, FilmInteger field) const {
+        const IntegerRange range = film_range(field, limits_);
+        return film[film_key(field)].integer(range.min, range.max);
     }
 
     static IntegratorSettings parse_integrator(const At& at) {
@@ -300,23 +305,6 @@ private:
 };
 
 }  // namespace
-
-void check_settings(const RenderSettings& s, const SceneLimits& limits) {
-    if (s.width < 1 || s.width > limits.max_dimension)
-        throw SceneError("film.width", "must be in [1, " + std::to_string(limits.max_dimension) + "]");
-    if (s.height < 1 || s.height > limits.max_dimension)
-        throw SceneError("film.height", "must be in [1, " + std::to_string(limits.max_dimension) + "]");
-    if (int64_t(s.width) * s.height > limits.max_pixels)
-        throw SceneError("film", "image of " + std::to_string(int64_t(s.width) * s.height) + " pixels exceeds the limit of " +
-                                     std::to_string(limits.max_pixels));
-    if (s.spp < 1 || s.spp > limits.max_spp)
-        throw SceneError("film.spp", "must be in [1, " + std::to_string(limits.max_spp) + "]");
-    if (s.first_sample % samples_per_round(s.filter) != 0)
-        throw SceneError("--samples", "must start at a multiple of " + std::to_string(samples_per_round(s.filter)) +
-                                          " (the tent filter renders whole rounds of 4 subpixels)");
-    if (!(s.target_error >= 0) || !std::isfinite(s.target_error)) throw SceneError("target_error", "must be >= 0");
-    if (!(s.time_limit >= 0) || !std::isfinite(s.time_limit)) throw SceneError("time_limit", "must be >= 0");
-}
 
 LoadedScene parse_scene(const std::string& json_text, const std::filesystem::path& folder, const SceneLimits& limits) {
     json root;

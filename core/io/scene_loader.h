@@ -4,45 +4,14 @@
 
 #include <filesystem>
 #include <memory>
-#include <stdexcept>
 #include <string>
 
+#include "io/film_overrides.h"
+#include "io/scene_limits.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 
 namespace glint {
-
-class SceneError : public std::runtime_error {
-public:
-    // malformed: the text is not acceptable JSON at all (syntax, nesting); otherwise the JSON is
-    // fine but the scene it describes is not.
-    SceneError(const std::string& path, const std::string& message, bool malformed = false)
-        : std::runtime_error(path.empty() ? message : path + ": " + message),
-          path_(path),
-          message_(message),
-          malformed_(malformed) {}
-    const std::string& path() const { return path_; }
-    const std::string& message() const { return message_; }
-    bool malformed() const { return malformed_; }
-
-private:
-    std::string path_, message_;
-    bool malformed_;
-};
-
-// JSON nested deeper is refused while parsing, before it can cost stack or memory.
-inline constexpr int kMaxJsonDepth = 32;
-
-// Bounds on what one scene may ask for, so no input exhausts memory or runs forever.
-struct SceneLimits {
-    int max_dimension = 16384;
-    int64_t max_pixels = int64_t(1) << 24;  // 16.7 Mpixel (about 1 GiB of film)
-    uint32_t max_spp = 1u << 20;
-    size_t max_objects = 100000;
-    size_t max_triangles = 4000000;
-    size_t max_file_bytes = size_t(512) << 20;
-    double max_coordinate = 1e9;  // keeps squared distances far from overflow
-};
 
 struct LoadedScene {
     std::shared_ptr<const Scene> scene;
@@ -54,8 +23,5 @@ struct LoadedScene {
 LoadedScene parse_scene(const std::string& json_text, const std::filesystem::path& folder,
                         const SceneLimits& limits = {});
 LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& limits = {});
-
-// Checks settings after command-line or request overrides; throws SceneError naming the field.
-void check_settings(const RenderSettings& settings, const SceneLimits& limits);
 
 }  // namespace glint

@@ -5,11 +5,12 @@
 #include <string>
 #include <vector>
 
+#include "http/job_request.h"
 #include "io/fingerprint.h"
-#include "job_request.h"
 #include "io/obj_loader.h"
 #include "io/partial_file.h"
 #include "io/scene_loader.h"
+#include "service/service_config.h"
 
 namespace glint::fuzz {
 namespace {
@@ -68,9 +69,9 @@ void partial(const uint8_t* data, size_t size) {
 
 void job_request(const uint8_t* data, size_t size) {
     try {
-        const LoadedScene loaded = parse_job_request(text(data, size), scenes_folder(), ServiceLimits{});
+        const LoadedScene loaded = parse_job_request(text(data, size), scenes_folder(), ServiceConfig{}.scene);
         require(loaded.scene != nullptr);
-    } catch (const RequestError&) {
+    } catch (const ServiceError&) {
     }
 }
 

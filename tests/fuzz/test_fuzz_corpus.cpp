@@ -9,9 +9,10 @@
 
 #include "io/fingerprint.h"
 #include "fuzz/harnesses.h"
-#include "job_request.h"
+#include "http/job_request.h"
 #include "io/partial_file.h"
 #include "io/scene_loader.h"
+#include "service/service_config.h"
 
 namespace glint {
 namespace {
@@ -69,8 +70,9 @@ TEST(FuzzRegressions, EachCrashingInputEndsInItsCleanError) {
     EXPECT_EQ(error_from<SceneError>("scene/number-overflow.json",
                                      [&](const auto& b) { parse_scene(text(b), fuzz::mesh_folder()); }),
               "malformed JSON: number overflow parsing '1e2612'");
-    EXPECT_EQ(error_from<RequestError>("job_request/number-overflow.json",
-                                       [&](const auto& b) { parse_job_request(text(b), fuzz::scenes_folder(), {}); }),
+    EXPECT_EQ(error_from<ServiceError>("job_request/number-overflow.json", [&](const auto& b) {
+                  parse_job_request(text(b), fuzz::scenes_folder(), ServiceConfig{}.scene);
+              }),
               "malformed JSON: number overflow parsing '1e999'");
     EXPECT_EQ(error_from<PartialError>("partial/unknown-encoding.bin",
                                        [](const auto& b) { decode_partial(with_checksum(b)); }),

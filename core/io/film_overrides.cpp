@@ -1,0 +1,75 @@
+#include "io/film_overrides.h"
+
+#include <cmath>
+
+namespace glint {
+namespace {
+
+[[noreturn]] void out_of(FilmInteger field, const SceneLimits& limits) {
+    throw SceneError(std::string("film.") + film_key(field),
+                     "must be in " + film_range(field, limits).text());
+}
+
+}  // namespace
+
+std::string IntegerRange::text() const {
+    // Appended piece by piece: GCC 12 warns (-Wrestrict) at "[" + std::to_string(...), wrongly.
+    std::string text = "[";
+    text += std::to_string(min);
+    text += ", ";
+    text += std::to_string(max);
+    return text + "]";
+}
+
+IntegerRange film_range(FilmInteger field, const SceneLimits& limits) {
+    switch (field) {
+        case FilmInteger::width:
+        case FilmInteger::height: return {1, limits.max_dimension};
+        case FilmInteger::spp: return {1, limits.max_spp};
+        case FilmInteger::seed: return {0, INT64_MAX};  // JSON integers are signed 64-bit
+    }
+    return {};
+}
+
+const char* film_key(FilmInteger field) {
+    static constexpr const char* kKeys[] = {"width", "height", "spp", "seed"};  // enum order
+    return kKeys[size_t(field)];
+}
+
+Encoding encoding_named(const std::string& name) {
+    return name == "srgb" ? Encoding::srgb : Encoding::gamma22;
+}
+
+void apply_film_overrides(const FilmOverrides& o, RenderSettings& s, const SceneLimits& limits) {
+    if (o.spp) s.spp = *o.spp;
+    if (o.width) s.width = *o.width;
+    if (o.height) s.height = *o.height;
+    if (o.seed) s.seed = *o.seed;
+    if (o.encoding) s.encoding = *o.encoding;
+    if (o.first_sample) s.first_sample = *o.first_sample;
+    if (o.target_error) s.target_error = *o.target_error;
+    if (o.time_limit) s.time_limit = *o.time_limit;
+    check_settings(s, limits);
+}
+
+void check_settings(const RenderSettings& s, const SceneLimits& limits) {
+    if (!film_range(FilmInteger::width, limits).contains(s.width))
+        out_of(FilmInteger::width, limits);
+    if (!film_range(FilmInteger::height, limits).contains(s.height))
+        out_of(FilmInteger::height, limits);
+    if (int64_t(s.width) * s.height > limits.max_pixels)
+        throw SceneError("film", "image of " + std::to_string(int64_t(s.width) * s.height) +
+                                     " pixels exceeds the limit of " +
+                                     std::to_string(limits.max_pixels));
+    if (!film_range(FilmInteger::spp, limits).contains(s.spp)) out_of(FilmInteger::spp, limits);
+    if (s.first_sample % samples_per_round(s.filter) != 0)
+        throw SceneError("--samples", "must start at a multiple of " +
+                                          std::to_string(samples_per_round(s.filter)) +
+                                          " (the tent filter renders whole rounds of 4 subpixels)");
+    if (!(s.target_error >= 0) || !std::isfinite(s.target_error))
+        throw SceneError("target_error", "must be >= 0");
+    if (!(s.time_limit >= 0) || !std::isfinite(s.time_limit))
+        throw SceneError("time_limit", "must be >= 0");
+}
+
+}  // namespace glint

@@ -1,0 +1,186 @@
+// `glint render`: scene files to PNG (and optionally PFM), or one scene's sample range to a
+// partial file, with progress on the terminal. Ctrl-C stops the render and still writes the
+// image rendered so far.
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <sstream>
+
+#include <spdlog/spdlog.h>
+
+#include "base/files.h"
+#include "cli/commands.h"
+#include "cli/progress_bar.h"
+#include "io/film_overrides.h"
+#include "io/fingerprint.h"
+#include "io/partial_file.h"
+#include "io/scene_loader.h"
+#include "service/job_film.h"
+
+namespace glint {
+namespace {
+
+struct RenderOptions {
+    std::vector<std::string> scenes;
+    std::string output, hdr, samples, partial;
+    std::optional<uint32_t> spp;
+    std::optional<int> width, height;
+    std::optional<uint64_t> seed;
+    std::optional<std::string> encoding;
+    unsigned threads = 0;
+    double target_error = 0, time_limit = 0;
+};
+
+// Where one scene's results go.
+struct Outputs {
+    std::string png, hdr, partial;
+};
+
+RenderJob* g_interruptible = nullptr;
+
+void on_interrupt(int) {
+    if (g_interruptible) g_interruptible->cancel();  // an atomic store: async-signal-safe
+}
+
+// "A:B" -> samples [A, B).
+void apply_sample_range(const std::string& range, FilmOverrides& o) {
+    unsigned first = 0, end = 0;
+    char colon = 0;
+    std::istringstream in(range);
+    if (!(in >> first >> colon >> end) || colon != ':' || !in.eof() || end <= first)
+        throw SceneError("--samples", "must be A:B with A < B (got \"" + range + "\")");
+    o.first_sample = first;
+    o.spp = end - first;
+}
+
+// The film options given, over the scene's; check_settings() then bounds the result as it bounds
+// a scene file's and a job request's.
+FilmOverrides film_overrides(const RenderOptions& o) {
+    FilmOverrides f;
+    f.spp = o.spp;
+    f.width = o.width;
+    f.height = o.height;
+    f.seed = o.seed;
+    if (o.encoding) f.encoding = encoding_named(*o.encoding);
+    if (!o.samples.empty()) apply_sample_range(o.samples, f);
+    f.target_error = o.target_error;
+    f.time_limit = o.time_limit;
+    return f;
+}
+
+void write_outputs(const RenderJob& job, const LoadedScene& loaded, const Outputs& out) {
+    const Image image = job.film().mean();
+    if (!out.png.empty()) write_file(out.png, encode_png(image, job.settings().encoding));
+    if (!out.hdr.empty()) write_file(out.hdr, encode_pfm(image));
+    if (out.partial.empty()) return;
+    const uint64_t print = fingerprint(*loaded.scene, job.settings());
+    write_file(out.partial, encode_partial(partial_of(job, print, job.progress().spp_done)));
+}
+
+// Renders one scene; returns the exit status (0 done, 1 failed, 130 interrupted).
+int render_scene(const RenderOptions& o, const std::string& scene, const Outputs& out, ThreadPool& pool) {
+    LoadedScene loaded;
+    try {
+        loaded = load_scene(scene);
+        apply_film_overrides(film_overrides(o), loaded.settings, SceneLimits{});
+    } catch (const SceneError& e) {
+        std::fprintf(stderr, "glint: %s: %s\n", scene.c_str(), e.what());
+        return 1;
+    }
+    const Geometry& g = loaded.scene->geometry();
+    spdlog::info("{}: {} spheres, {} triangles ({} degenerate, ignored), {} lights; {}x{}, {} spp", scene,
+                 g.sphere_count(), g.triangle_count(), g.degenerate_triangles(), loaded.scene->lights().size(),
+                 loaded.settings.width, loaded.settings.height, loaded.settings.spp);
+    RenderJob job(loaded.scene, loaded.settings);
+    ProgressBar bar(stderr);
+    g_interruptible = &job;
+    const StopReason reason = job.run(pool, [&](const Progress& p) { bar.update(p); });
+    bar.finish();
+    g_interruptible = nullptr;
+    try {
+        write_outputs(job, loaded, out);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "glint: %s\n", e.what());
+        return 1;
+    }
+    const Progress p = job.progress();
+    std::printf("%s: %s; %u spp at %dx%d in %.2f s, %.3g samples/s, estimated RMSE %.4g, "
+                "%llu samples dropped (rounds with a non-finite one)\n",
+                (out.png.empty() ? out.partial : out.png).c_str(), to_string(reason), p.spp_done, job.settings().width,
+                job.settings().height, p.seconds, p.samples_per_second, p.error_estimate,
+                static_cast<unsigned long long>(p.dropped));
+    return reason == StopReason::cancelled ? 130 : 0;
+}
+
+// Several scene files, or folders of them, rendered one after another into the output folder;
+// a scene that fails does not stop the others.
+int render_batch(const RenderOptions& o, ThreadPool& pool) {
+    std::vector<std::filesystem::path> scenes;
+    for (const auto& arg : o.scenes) {
+        if (!std::filesystem::is_directory(arg)) {
+            scenes.emplace_back(arg);
+            continue;
+        }
+        std::vector<std::filesystem::path> found;
+        for (const auto& entry : std::filesystem::directory_iterator(arg))
+            if (entry.path().extension() == ".json") found.push_back(entry.path());
+        std::sort(found.begin(), found.end());
+        scenes.insert(scenes.end(), found.begin(), found.end());
+    }
+    std::filesystem::create_directories(o.output);
+    if (!o.hdr.empty()) std::filesystem::create_directories(o.hdr);
+    int failed = 0;
+    for (const auto& scene : scenes) {
+        const std::string stem = scene.stem().string();
+        Outputs out{(std::filesystem::path(o.output) / (stem + ".png")).string(),
+                    o.hdr.empty() ? "" : (std::filesystem::path(o.hdr) / (stem + ".pfm")).string(), ""};
+        const int status = render_scene(o, scene.string(), out, pool);
+        if (status == 130) return 130;
+        failed += status != 0;
+    }
+    std::printf("%zu scenes: %zu rendered, %d failed\n", scenes.size(), scenes.size() - size_t(failed), failed);
+    return failed ? 1 : 0;
+}
+
+int run_render(const RenderOptions& o) {
+    struct sigaction action {};
+    action.sa_handler = on_interrupt;
+    action.sa_flags = SA_RESETHAND;  // a second Ctrl-C ends the process at once
+    sigaction(SIGINT, &action, nullptr);
+    ThreadPool pool(o.threads);
+    const bool batch = o.scenes.size() > 1 || std::filesystem::is_directory(o.scenes.front());
+    if (batch && (!o.samples.empty() || !o.partial.empty())) {
+        std::fprintf(stderr, "glint: --samples and --partial take a single scene file\n");
+        return 2;
+    }
+    if (o.output.empty() && o.partial.empty()) {
+        std::fprintf(stderr, "glint: give -o (a PNG, or a folder for several scenes) or --partial\n");
+        return 2;
+    }
+    if (batch) return render_batch(o, pool);
+    return render_scene(o, o.scenes.front(), Outputs{o.output, o.hdr, o.partial}, pool);
+}
+
+}  // namespace
+
+std::function<int()> add_render_command(CLI::App& app) {
+    auto o = std::make_shared<RenderOptions>();
+    CLI::App* cmd = app.add_subcommand("render", "Render scene files to PNG images");
+    cmd->add_option("scenes", o->scenes, "Scene JSON files, or folders of them")->required();
+    cmd->add_option("-o,--output", o->output, "PNG file to write (a folder when rendering several scenes)");
+    cmd->add_option("--hdr", o->hdr, "Also write the linear image as PFM (a folder for several scenes)");
+    cmd->add_option("--samples", o->samples, "Render only samples A..B-1 of every pixel (A:B), for --partial");
+    cmd->add_option("--partial", o->partial, "Write the per-pixel sums to this file, for glint merge");
+    cmd->add_option("--spp", o->spp, "Samples per pixel (film.spp)");
+    cmd->add_option("--width", o->width, "Image width (film.width)");
+    cmd->add_option("--height", o->height, "Image height (film.height)");
+    cmd->add_option("--threads", o->threads, "Render threads (default: all cores)");
+    cmd->add_option("--seed", o->seed, "Random seed (film.seed)");
+    cmd->add_option("--encoding", o->encoding, "PNG encoding (film.encoding)")->check(CLI::IsMember({"gamma2.2", "srgb"}));
+    cmd->add_option("--target-error", o->target_error, "Stop once the estimated RMSE is at most this")->check(CLI::NonNegativeNumber);
+    cmd->add_option("--time-limit", o->time_limit, "Stop after this many seconds")->check(CLI::NonNegativeNumber);
+    return [o] { return run_render(*o); };
+}
+
+}  // namespace glint

@@ -1,0 +1,63 @@
+// `glint serve`: the render service until SIGINT or SIGTERM, then a graceful stop and exit 0.
+#include <csignal>
+
+#include <spdlog/spdlog.h>
+
+#include "cli/commands.h"
+#include "http/render_server.h"
+
+namespace glint {
+namespace {
+
+// `glint serve` has no settings of its own: its options fill the two layers' configurations.
+struct ServeOptions {
+    ServiceConfig service;
+    HttpConfig http;
+};
+
+int run_serve(const ServeOptions& o) {
+    // Block the stop signals in every thread (they inherit the mask); this one waits for them.
+    sigset_t stop_signals;
+    sigemptyset(&stop_signals);
+    sigaddset(&stop_signals, SIGINT);
+    sigaddset(&stop_signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+    std::signal(SIGPIPE, SIG_IGN);  // a client that hangs up must not end the process
+    try {
+        RenderServer server(o.service, o.http);
+        int signal = 0;
+        sigwait(&stop_signals, &signal);
+        spdlog::info("received {}", signal == SIGINT ? "SIGINT" : "SIGTERM");
+        server.stop();
+    } catch (const std::exception& e) {
+        spdlog::error("{}", e.what());
+        return 1;
+    }
+    return 0;
+}
+
+}  // namespace
+
+std::function<int()> add_serve_command(CLI::App& app) {
+    auto o = std::make_shared<ServeOptions>();
+    CLI::App* cmd = app.add_subcommand("serve", "Run the HTTP render service");
+    cmd->add_option("--host", o->http.host, "Address to listen on (default 127.0.0.1: this machine only)")
+        ->envname("GLINT_HOST");
+    cmd->add_option("--port", o->http.port, "Port (default 8080)")->check(CLI::Range(1, 65535));
+    cmd->add_option("--threads", o->service.threads, "Render threads shared by all jobs (default: all cores)");
+    cmd->add_option("--scenes", o->service.scenes, "Scene folder: presets and the only place meshes are read from");
+    cmd->add_option("--web", o->http.web, "Folder of the web page");
+    cmd->add_option("--max-jobs", o->service.max_running, "Jobs rendering at once")->check(CLI::PositiveNumber);
+    cmd->add_option("--max-queued", o->service.max_queued, "Jobs waiting before new ones get 429");
+    cmd->add_option("--store", o->service.store.dir, "Folder that keeps every job (scene, state, film) across restarts");
+    cmd->add_option("--checkpoint-interval", o->service.store.checkpoint_interval,
+                    "Seconds between checkpoints of a running job's film (default 5)")
+        ->check(CLI::Range(0.0, 3600.0));
+    cmd->add_option("--store-limit", o->service.store.limit_bytes,
+                    "Bytes the store may hold; the oldest finished jobs are evicted beyond (default 2 GiB)")
+        ->check(CLI::PositiveNumber);
+    cmd->add_option("--token", o->http.token, "Bearer token the job routes require (needed off loopback)")->envname("GLINT_TOKEN");
+    return [o] { return run_serve(*o); };
+}
+
+}  // namespace glint

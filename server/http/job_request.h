@@ -1,0 +1,25 @@
+// What POST /render and POST /jobs accept: a full scene, or {"preset": NAME} with overrides of
+// width, height, spp and seed. Errors are the service's (service/errors.h), with the JSON path
+// they are about; http/error_response.h gives each its status.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "io/scene_loader.h"
+#include "service/errors.h"
+
+namespace glint {
+
+// Throws MalformedRequest, InvalidRequest or NotFound (an unknown preset).
+LoadedScene parse_job_request(const std::string& body, const std::filesystem::path& scenes,
+                              const SceneLimits& limits);
+
+// The scenes folder's *.json files, by name (file stem), with their descriptions and film sizes.
+nlohmann::json list_presets(const std::filesystem::path& scenes);
+// A preset's path, or an empty path when the name is not a preset (names are [A-Za-z0-9_-]+).
+std::filesystem::path preset_path(const std::filesystem::path& scenes, const std::string& name);
+
+}  // namespace glint

@@ -1,0 +1,225 @@
+#include "service/job.h"
+
+#include <spdlog/spdlog.h>
+
+#include "io/fingerprint.h"
+#include "service/job_film.h"
+
+namespace glint {
+
+namespace {
+
+// Samples per pixel of the pixels that got the most: a cancelled pass leaves some tiles ahead.
+uint32_t most_samples(const Film& film) {
+    uint64_t most = 0;
+    for (const PixelSums& px : film.pixels()) most = std::max(most, px.count + px.dropped);
+    return uint32_t(most);
+}
+
+}  // namespace
+
+Job::Job(std::string id, const LoadedScene& scene, const JobStore* store, std::chrono::system_clock::time_point created)
+    : id_(std::move(id)), render_(scene.scene, scene.settings), created_(created), store_(store) {
+    snapshot_.progress.spp_target = render_.settings().spp;
+    if (store_) fingerprint_ = fingerprint(*scene.scene, scene.settings);
+}
+
+Progress Job::with_earlier_time(Progress p) const {
+    p.seconds += seconds_before_;
+    return p;
+}
+
+void Job::save_state(JobState state, const std::string& error, const Progress& progress) const {
+    if (!store_) return;
+    try {
+        store_->save_state(id_, created_, state, error, progress);
+    } catch (const std::exception& e) {
+        spdlog::error("job {}: cannot save its state: {}", id_, e.what());
+    }
+}
+
+// Called between passes, so the film holds whole passes: resuming from it adds the remaining
+// samples in the order an uninterrupted run would.
+void Job::checkpoint(const Progress& progress) {
+    using Clock = std::chrono::steady_clock;
+    const auto interval = std::chrono::duration<double>(store_->config().checkpoint_interval);
+    if (!suspended_ && Clock::now() - last_checkpoint_ < interval) return;
+    const auto start = Clock::now();
+    try {
+        store_->save_film(id_, FilmFile::checkpoint, partial_of(render_, fingerprint_, progress.spp_done));
+        store_->save_state(id_, created_, JobState::running, "", progress);
+        spdlog::info("job {} checkpoint at {} spp in {:.1f} ms", id_, progress.spp_done,
+                     std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+    } catch (const std::exception& e) {
+        spdlog::error("job {}: checkpoint failed: {}", id_, e.what());
+    }
+    last_checkpoint_ = Clock::now();
+}
+
+// The final film replaces the checkpoint only once the state says the job ended: a crash in
+// between leaves a job that resumes from its checkpoint. Its sample range covers every pixel's
+// samples, also those of a pass cut short (which only some pixels have). Called before the job
+// ends in memory, so a job is evicted only once its files are complete.
+void Job::save_final(JobState state, const Progress& progress) const {
+    if (!store_) return;
+    try {
+        if (const uint32_t most = most_samples(render_.film()); most > 0)
+            store_->save_film(id_, FilmFile::final, partial_of(render_, fingerprint_, most));
+        store_->save_state(id_, created_, state, "", progress);
+        std::filesystem::remove(store_->film_path(id_, FilmFile::checkpoint));
+    } catch (const std::exception& e) {
+        spdlog::error("job {}: cannot save its end: {}", id_, e.what());
+    }
+}
+
+void Job::publish(JobState state, const Progress& progress) {
+    // Encode outside the lock: watchers only ever wait for the pointer swap.
+    auto image = std::make_shared<const Image>(render_.film().mean());
+    auto png = std::make_shared<const std::vector<uint8_t>>(encode_png(*image, render_.settings().encoding));
+    {
+        std::lock_guard lock(mutex_);
+        snapshot_.frame += 1;
+        snapshot_.state = state;
+        snapshot_.progress = progress;
+        snapshot_.png = std::move(png);
+        snapshot_.image = std::move(image);
+    }
+    changed_.notify_all();
+}
+
+void Job::run(ThreadPool& pool) {
+    {
+        std::lock_guard lock(mutex_);
+        if (snapshot_.state != JobState::queued) return;  // cancelled while queued
+        snapshot_.state = JobState::running;
+    }
+    changed_.notify_all();
+    spdlog::info("job {} running: {}x{}, {} spp, from sample {}", id_, settings().width, settings().height,
+                 settings().spp, render_.progress().spp_done);
+    StopReason reason = StopReason::cancelled;
+    try {
+        reason = render_.run(pool, [&](const Progress& pass) {
+            const Progress p = with_earlier_time(pass);
+            publish(JobState::running, p);
+            spdlog::info("job {} running: {}/{} spp, error {:.4g}", id_, p.spp_done, p.spp_target, p.error_estimate);
+            if (store_) checkpoint(p);
+            if (suspended_) render_.cancel();
+        });
+        if (suspended_ && reason == StopReason::cancelled) {
+            publish(JobState::cancelled, with_earlier_time(render_.progress()));
+            spdlog::info("job {} suspended at {} spp: it resumes when the server restarts on the store", id_,
+                         render_.progress().spp_done);
+            return;
+        }
+        // The final frame also holds the samples of a pass cut short: nothing rendered is lost.
+        const JobState end = reason == StopReason::cancelled ? JobState::cancelled : JobState::done;
+        const Progress p = with_earlier_time(render_.progress());
+        save_final(end, p);
+        publish(end, p);
+    } catch (const std::exception& e) {
+        spdlog::error("job {} failed: {}", id_, e.what());
+        const Progress p = with_earlier_time(render_.progress());
+        save_state(JobState::failed, e.what(), p);
+        {
+            std::lock_guard lock(mutex_);
+            snapshot_.error = e.what();
+        }
+        publish(JobState::failed, p);
+        return;
+    }
+    const JobSnapshot last = snapshot();
+    spdlog::info("job {} {} ({}): {} spp in {:.2f} s, error {:.4g}", id_, to_string(last.state), to_string(reason),
+                 last.progress.spp_done, last.progress.seconds, last.progress.error_estimate);
+}
+
+void Job::cancel() {
+    {
+        std::lock_guard lock(mutex_);
+        if (is_final(snapshot_.state) || suspended_) return;
+        if (snapshot_.state == JobState::queued) {
+            save_state(JobState::cancelled, "", snapshot_.progress);  // on disk first, as in run()
+            snapshot_.state = JobState::cancelled;
+            snapshot_.frame += 1;
+        }
+    }
+    render_.cancel();
+    changed_.notify_all();
+    spdlog::info("job {} cancel requested", id_);
+}
+
+void Job::suspend() {
+    {
+        std::lock_guard lock(mutex_);
+        suspended_ = true;
+        if (snapshot_.state == JobState::queued) {  // ends in memory only: the store keeps it queued
+            snapshot_.state = JobState::cancelled;
+            snapshot_.frame += 1;
+        }
+    }
+    changed_.notify_all();
+}
+
+void Job::resume(const Partial& checkpoint, const Progress& saved) {
+    if (checkpoint.fingerprint != fingerprint_)
+        throw std::invalid_argument("it is from another scene or settings (fingerprint differs)");
+    if (checkpoint.sampler_version != kSamplerVersion)
+        throw std::invalid_argument("it was rendered by another version of glint's sampler (" +
+                                    std::to_string(checkpoint.sampler_version) + ", not " +
+                                    std::to_string(kSamplerVersion) + ")");
+    if (checkpoint.encoding != settings().encoding) throw std::invalid_argument("its PNG encoding differs from the job's");
+    if (checkpoint.first_sample != settings().first_sample)
+        throw std::invalid_argument("it starts at sample " + std::to_string(checkpoint.first_sample) + ", the job at " +
+                                    std::to_string(settings().first_sample));
+    render_.resume(checkpoint.film, checkpoint.end_sample - checkpoint.first_sample);
+    seconds_before_ = saved.seconds;
+    Progress p = saved;
+    p.spp_done = render_.progress().spp_done;
+    std::lock_guard lock(mutex_);
+    snapshot_.progress = p;
+}
+
+void Job::restore_final(JobState state, const std::string& error, const Progress& progress, const Partial* film) {
+    std::shared_ptr<const Image> image;
+    std::shared_ptr<const std::vector<uint8_t>> png;
+    if (film) {
+        if (film->fingerprint != fingerprint_ || film->film.width() != settings().width ||
+            film->film.height() != settings().height)
+            throw std::invalid_argument("it is from another scene or settings (fingerprint or size differs)");
+        image = std::make_shared<const Image>(film->film.mean());
+        png = std::make_shared<const std::vector<uint8_t>>(encode_png(*image, settings().encoding));
+    }
+    std::lock_guard lock(mutex_);
+    snapshot_.frame = 1;
+    snapshot_.state = state;
+    snapshot_.error = error;
+    snapshot_.progress = progress;
+    snapshot_.image = std::move(image);
+    snapshot_.png = std::move(png);
+}
+
+void Job::fail(const std::string& error) {
+    save_state(JobState::failed, error, snapshot().progress);
+    {
+        std::lock_guard lock(mutex_);
+        snapshot_.frame += 1;
+        snapshot_.state = JobState::failed;
+        snapshot_.error = error;
+        snapshot_.png.reset();
+        snapshot_.image.reset();
+    }
+    changed_.notify_all();
+    spdlog::error("job {} failed: {}", id_, error);
+}
+
+JobSnapshot Job::snapshot() const {
+    std::lock_guard lock(mutex_);
+    return snapshot_;
+}
+
+JobSnapshot Job::wait(uint64_t after, std::chrono::milliseconds timeout) const {
+    std::unique_lock lock(mutex_);
+    changed_.wait_for(lock, timeout, [&] { return snapshot_.frame > after || is_final(snapshot_.state); });
+    return snapshot_;
+}
+
+}  // namespace glint

@@ -1,0 +1,83 @@
+// One render job as the service sees it: its state, and the snapshot it publishes after every
+// pass (the PNG is encoded once per pass, however many clients watch). Watchers wait on it
+// without ever blocking the render.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "io/partial_file.h"
+#include "io/scene_loader.h"
+#include "render/renderer.h"
+#include "service/job_state.h"
+#include "service/job_store.h"
+
+namespace glint {
+
+struct JobSnapshot {
+    uint64_t frame = 0;  // 0 until the first pass; then one more per pass (and one at the end)
+    JobState state = JobState::queued;
+    Progress progress;
+    std::shared_ptr<const std::vector<uint8_t>> png;  // null until the first pass
+    std::shared_ptr<const Image> image;               // the linear mean image of that frame
+    std::string error;                                // why a failed job failed
+};
+
+class Job {
+public:
+    // With a store, the job saves its state when it changes and its film after passes (at most
+    // every checkpoint interval) and at the end; see job_store.h.
+    Job(std::string id, const LoadedScene& scene, const JobStore* store = nullptr,
+        std::chrono::system_clock::time_point created = std::chrono::system_clock::now());
+
+    const std::string& id() const { return id_; }
+    const RenderSettings& settings() const { return render_.settings(); }
+    std::chrono::system_clock::time_point created() const { return created_; }
+
+    // Renders to the end on `pool` (called by the job manager's slot thread).
+    void run(ThreadPool& pool);
+    // Queued: ends at once. Running: the pass in flight stops after its tiles in progress.
+    void cancel();
+    // A graceful stop with a store: the job ends at its next pass boundary with a checkpoint and
+    // stays queued in the store, to resume when the server starts again (in memory it ends).
+    void suspend();
+
+    // A restarted server's jobs. Before run(): continue from a checkpoint's film (whole passes);
+    // `saved` is the progress the store last recorded. Throws std::invalid_argument if it does not fit.
+    void resume(const Partial& checkpoint, const Progress& saved);
+    // A job that had ended: its state and, if it rendered anything, the film it ended with.
+    // Throws std::invalid_argument if the film is not this job's.
+    void restore_final(JobState state, const std::string& error, const Progress& progress, const Partial* film);
+    // Ends the job as failed with `error` (shown with its status), without an image.
+    void fail(const std::string& error);
+
+    JobSnapshot snapshot() const;
+    // Waits until there is a frame newer than `after`, the job is final, or `timeout` passes.
+    JobSnapshot wait(uint64_t after, std::chrono::milliseconds timeout) const;
+
+private:
+    void publish(JobState state, const Progress& progress);
+    Progress with_earlier_time(Progress p) const;
+    // Store writes: a failure is logged, never stops the render or a request.
+    void save_state(JobState state, const std::string& error, const Progress& progress) const;
+    void checkpoint(const Progress& progress);
+    void save_final(JobState state, const Progress& progress) const;
+
+    const std::string id_;
+    RenderJob render_;
+    std::chrono::system_clock::time_point created_;
+    const JobStore* store_;
+    uint64_t fingerprint_ = 0;  // of scene and settings, written into the film files
+    double seconds_before_ = 0;  // rendering time before a restart
+    std::chrono::steady_clock::time_point last_checkpoint_ = std::chrono::steady_clock::now();
+    std::atomic<bool> suspended_{false};
+    mutable std::mutex mutex_;
+    mutable std::condition_variable changed_;
+    JobSnapshot snapshot_;
+};
+
+}  // namespace glint

@@ -1,0 +1,203 @@
+#include "service/job_manager.h"
+
+#include <random>
+
+#include <spdlog/spdlog.h>
+
+#include "service/errors.h"
+
+namespace glint {
+namespace {
+
+std::string new_job_id() {
+    static std::mutex mutex;
+    static std::mt19937_64 generator{std::random_device{}()};
+    std::lock_guard lock(mutex);
+    char id[17];
+    std::snprintf(id, sizeof id, "%016llx", static_cast<unsigned long long>(generator()));
+    return id;
+}
+
+}  // namespace
+
+JobManager::JobManager(ThreadPool& pool, const ServiceConfig& config)
+    : pool_(pool),
+      config_(config),
+      store_(config.store.dir.empty() ? nullptr : std::make_unique<JobStore>(config.store)) {
+    for (unsigned i = 0; i < config_.max_running; ++i) slots_.emplace_back([this] { slot(); });
+}
+
+JobManager::~JobManager() {
+    shutdown();
+    for (std::thread& t : slots_) t.join();
+}
+
+std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene, const std::string& request) {
+    const uint64_t film_bytes = store_ ? partial_file_size(scene.settings.width, scene.settings.height) : 0;
+    if (store_ && film_bytes > store_->config().limit_bytes)
+        throw InvalidRequest("the job's checkpoint (" + std::to_string(film_bytes) +
+                             " bytes) would not fit in the store (limit " +
+                             std::to_string(store_->config().limit_bytes) + " bytes)");
+    auto job = std::make_shared<Job>(new_job_id(), scene, store_.get());
+    {
+        std::lock_guard lock(mutex_);
+        if (stopping_) throw Busy("the server is shutting down");
+        if (queue_.size() >= config_.max_queued)
+            throw Busy("too many queued jobs (limit " + std::to_string(config_.max_queued) + ")");
+        if (store_) {
+            try {
+                store_->save_request(job->id(), request);
+                store_->save_state(job->id(), job->created(), JobState::queued, "", job->snapshot().progress);
+            } catch (const std::exception&) {
+                store_->remove(job->id());  // a job the store cannot keep is not accepted
+                throw;
+            }
+        }
+        queue_.push_back(job);
+        jobs_[job->id()] = job;
+        order_.push_back(job->id());
+        forget_old_finished(film_bytes);
+    }
+    work_.notify_one();
+    spdlog::info("job {} queued: {}x{}, {} spp", job->id(), job->settings().width, job->settings().height,
+                 job->settings().spp);
+    return job;
+}
+
+void JobManager::forget_old_finished(uint64_t reserve) {
+    size_t finished = 0;
+    for (const auto& id : order_) finished += is_final(jobs_.at(id)->snapshot().state);
+    const uint64_t limit = store_ ? store_->config().limit_bytes : 0;
+    uint64_t used = store_ ? store_->bytes_used() + reserve : 0;
+    for (auto it = order_.begin(); it != order_.end() && (finished > config_.max_finished || used > limit);) {
+        if (!is_final(jobs_.at(*it)->snapshot().state)) {
+            ++it;
+            continue;
+        }
+        if (store_) {
+            const uint64_t bytes = store_->job_bytes(*it);
+            store_->remove(*it);
+            if (used > limit)
+                spdlog::info("store: evicted finished job {} ({} bytes) to keep within the limit of {} bytes", *it,
+                             bytes, limit);
+            used -= std::min(used, bytes);
+        }
+        jobs_.erase(*it);
+        it = order_.erase(it);
+        --finished;
+    }
+    if (used > limit)
+        spdlog::warn("store: {} bytes in use or about to be, over the limit of {} bytes: every job left is unfinished",
+                     used, limit);
+}
+
+void JobManager::restore(const std::function<LoadedScene(const std::string&)>& parse) {
+    if (!store_) return;
+    size_t restored = 0, unfinished = 0;
+    for (const StoredJob& stored : store_->load()) {
+        std::shared_ptr<Job> job;
+        try {
+            job = restore_job(stored, parse(stored.request));
+        } catch (const std::exception& e) {
+            spdlog::error("store: job {} left out: its request is not accepted any more: {}", stored.id, e.what());
+            continue;
+        }
+        std::lock_guard lock(mutex_);
+        jobs_[job->id()] = job;
+        order_.push_back(job->id());
+        ++restored;
+        if (!is_final(job->snapshot().state)) {
+            queue_.push_back(job);
+            ++unfinished;
+        }
+    }
+    {
+        std::lock_guard lock(mutex_);
+        forget_old_finished();
+    }
+    work_.notify_all();
+    spdlog::info("store {}: {} jobs restored, {} of them to resume; {} bytes in use, limit {} bytes",
+                 store_->config().dir.string(), restored, unfinished, store_->bytes_used(), store_->config().limit_bytes);
+}
+
+std::shared_ptr<Job> JobManager::restore_job(const StoredJob& stored, const LoadedScene& loaded) const {
+    LoadedScene scene = loaded;
+    if (scene.settings.time_limit > 0)  // the time rendered before the restart counts
+        scene.settings.time_limit = std::max(1e-3, scene.settings.time_limit - stored.progress.seconds);
+    auto job = std::make_shared<Job>(stored.id, scene, store_.get(), stored.created);
+    const bool final = is_final(stored.state);
+    const FilmFile which = final ? FilmFile::final : FilmFile::checkpoint;
+    try {
+        if (final) {
+            std::optional<Partial> film;
+            if (stored.state != JobState::failed && store_->has_film(stored.id, which))
+                film = store_->load_film(stored.id, which);
+            job->restore_final(stored.state, stored.error, stored.progress, film ? &*film : nullptr);
+        } else if (store_->has_film(stored.id, which)) {
+            job->resume(store_->load_film(stored.id, which), stored.progress);
+            spdlog::info("store: job {} resumes from its checkpoint at {} spp", stored.id, job->snapshot().progress.spp_done);
+        }
+    } catch (const std::exception& e) {
+        job->fail(store_->film_path(stored.id, which).string() + ": " + e.what());
+    }
+    return job;
+}
+
+void JobManager::slot() {
+    for (;;) {
+        std::shared_ptr<Job> job;
+        {
+            std::unique_lock lock(mutex_);
+            work_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+            if (stopping_) return;
+            job = queue_.front();
+            queue_.pop_front();
+            ++running_;
+        }
+        job->run(pool_);
+        std::lock_guard lock(mutex_);
+        --running_;
+        // The job's final film replaced its checkpoint. Not while stopping: suspended jobs look
+        // ended in memory, but the store keeps them to resume.
+        if (store_ && !stopping_) forget_old_finished();
+    }
+}
+
+std::shared_ptr<Job> JobManager::find(const std::string& id) const {
+    std::lock_guard lock(mutex_);
+    const auto it = jobs_.find(id);
+    return it == jobs_.end() ? nullptr : it->second;
+}
+
+std::vector<std::shared_ptr<Job>> JobManager::list() const {
+    std::lock_guard lock(mutex_);
+    std::vector<std::shared_ptr<Job>> out;
+    for (const auto& id : order_) out.push_back(jobs_.at(id));
+    return out;
+}
+
+size_t JobManager::running() const {
+    std::lock_guard lock(mutex_);
+    return running_;
+}
+
+size_t JobManager::queued() const {
+    std::lock_guard lock(mutex_);
+    return queue_.size();
+}
+
+void JobManager::shutdown() {
+    std::vector<std::shared_ptr<Job>> all;
+    {
+        std::lock_guard lock(mutex_);
+        if (stopping_) return;
+        stopping_ = true;
+        queue_.clear();
+        for (const auto& [id, job] : jobs_) all.push_back(job);
+    }
+    work_.notify_all();
+    for (const auto& job : all) store_ ? job->suspend() : job->cancel();
+    spdlog::info("job manager stopped: {} jobs cancelled or finished", all.size());
+}
+
+}  // namespace glint

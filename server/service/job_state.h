@@ -1,0 +1,17 @@
+// Where a job is in its life. Apart from job.h so the store can record a state without
+// knowing the job that has it.
+#pragma once
+
+#include <string>
+
+namespace glint {
+
+enum class JobState { queued, running, done, cancelled, failed };
+const char* to_string(JobState state);
+inline bool is_final(JobState s) {
+    return s == JobState::done || s == JobState::cancelled || s == JobState::failed;
+}
+// The state `name` names (to_string's inverse); throws std::invalid_argument for any other.
+JobState job_state_named(const std::string& name);
+
+}  // namespace glint

@@ -1,0 +1,46 @@
+// The render service's configuration: its render threads, how many jobs it runs, queues and
+// keeps, what one job may ask for, and where jobs are kept across restarts. `glint serve` fills
+// it from its options; the HTTP layer's own settings are in http/http_config.h.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+
+#include "io/scene_limits.h"
+
+namespace glint {
+
+// `glint serve --store DIR`: jobs on disk (service/job_store.h).
+struct StoreConfig {
+    // Empty: no store, jobs live in memory only and end with the process.
+    std::filesystem::path dir;
+    // Seconds between checkpoints of a running job: what a crash can lose, against the cost of
+    // writing a whole film (128 bytes a pixel) that often.
+    double checkpoint_interval = 5;
+    // Bytes the store may hold; beyond, the oldest finished jobs are evicted, so a server that
+    // runs for months does not fill its disk.
+    uint64_t limit_bytes = uint64_t(2) << 30;
+};
+
+struct ServiceConfig {
+    // Presets (GET /presets, {"preset": NAME}) and the only folder meshes are read from.
+    std::filesystem::path scenes = "scenes";
+    // Render threads shared by every job; 0: one per core.
+    unsigned threads = 0;
+    // Jobs rendering at once. They share the render threads round-robin, so a small job need
+    // not wait for a large one to end; beyond this many, jobs queue.
+    unsigned max_running = 4;
+    // Jobs waiting for a slot; beyond, a submission is refused as busy (429), so a flood of
+    // requests cannot hold unbounded memory in queued scenes.
+    size_t max_queued = 16;
+    // Finished jobs kept for their images; the oldest are forgotten beyond, bounding memory.
+    size_t max_finished = 64;
+    // What one job may ask for: tighter than the scene loader's defaults, since every client
+    // shares this process's memory and a job keeps its film (128 bytes a pixel) in it.
+    SceneLimits scene{
+        .max_dimension = 4096, .max_pixels = int64_t(4096) * 4096, .max_spp = 1u << 16};
+    StoreConfig store;
+};
+
+}  // namespace glint

@@ -1,0 +1,285 @@
+// The HTTP API against a real server on 127.0.0.1 and a free port, through cpp-httplib's client.
+#include <gtest/gtest.h>
+
+#include <stb_image.h>
+
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "http/render_server.h"
+#include "support/raw_http.h"
+#include "support/test_support.h"
+
+namespace glint {
+namespace {
+
+using namespace std::chrono_literals;
+using nlohmann::json;
+
+class Server : public ::testing::Test {
+protected:
+    void start(ServiceConfig service = {}, HttpConfig http = {}) {
+        service.scenes = GLINT_SCENES_DIR;
+        service.threads = 2;
+        http.web = GLINT_WEB_DIR;
+        http.port = 0;
+        service_ = std::make_unique<RenderServer>(service, http);
+        client_ = std::make_unique<httplib::Client>("127.0.0.1", service_->port());
+        client_->set_read_timeout(60, 0);
+    }
+    void SetUp() override { start(); }
+
+    json post(const std::string& path, const std::string& body, int expected_status) {
+        auto res = client_->Post(path.c_str(), body, "application/json");
+        EXPECT_TRUE(res) << path;
+        if (!res) return {};
+        EXPECT_EQ(res->status, expected_status) << res->body;
+        return res->get_header_value("Content-Type") == "application/json" ? json::parse(res->body) : json{};
+    }
+    json get_json(const std::string& path, int expected_status = 200) {
+        auto res = client_->Get(path.c_str());
+        EXPECT_TRUE(res) << path;
+        if (!res) return {};
+        EXPECT_EQ(res->status, expected_status) << res->body;
+        EXPECT_EQ(res->get_header_value("Content-Type"), "application/json");
+        return json::parse(res->body);
+    }
+    json wait_until_final(const std::string& id) {
+        for (int i = 0; i < 600; ++i) {
+            const json s = get_json("/jobs/" + id);
+            if (s["state"] != "queued" && s["state"] != "running") return s;
+            std::this_thread::sleep_for(50ms);
+        }
+        ADD_FAILURE() << "job " << id << " did not finish";
+        return {};
+    }
+
+    std::unique_ptr<RenderServer> service_;
+    std::unique_ptr<httplib::Client> client_;
+};
+
+const std::string kSmallCornell = R"({"preset": "cornell", "width": 40, "height": 30, "spp": 16})";
+
+struct Decoded {
+    int width = 0, height = 0;
+};
+Decoded decode_png(const std::string& bytes) {
+    Decoded d;
+    int channels;
+    unsigned char* pixels =
+        stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), int(bytes.size()), &d.width, &d.height, &channels, 3);
+    if (!pixels) return {};
+    stbi_image_free(pixels);
+    return d;
+}
+
+TEST_F(Server, HealthAndPresets) {
+    EXPECT_EQ(get_json("/health")["status"], "ok");
+    const json presets = get_json("/presets");
+    ASSERT_TRUE(presets.is_array());
+    bool cornell = false;
+    for (const auto& p : presets) cornell |= p["name"] == "cornell" && p["width"] == 1024;
+    EXPECT_TRUE(cornell) << presets.dump();
+    EXPECT_EQ(get_json("/presets/cornell")["camera"]["near"], 140);
+    EXPECT_EQ(get_json("/presets/nope", 404)["error"], "no preset nope");
+}
+
+TEST_F(Server, RenderReturnsTheSamePngAsTheLibrary) {
+    auto res = client_->Post("/render", kSmallCornell, "application/json");
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 200);
+    EXPECT_EQ(res->get_header_value("Content-Type"), "image/png");
+    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    s.settings.width = 40;
+    s.settings.height = 30;
+    s.settings.spp = 16;
+    const auto job = testing::render(s);
+    const std::vector<uint8_t> expected = encode_png(job->film().mean(), Encoding::gamma22);
+    EXPECT_EQ(res->body, std::string(expected.begin(), expected.end()));
+}
+
+TEST_F(Server, JobLifecycleAndImages) {
+    const json accepted = post("/jobs", kSmallCornell, 202);
+    const std::string id = accepted["id"];
+    EXPECT_EQ(accepted["urls"]["stream"], "/jobs/" + id + "/stream");
+    const json done = wait_until_final(id);
+    EXPECT_EQ(done["state"], "done");
+    EXPECT_EQ(done["spp_done"], 16);
+    EXPECT_GT(done["samples_per_second"].get<double>(), 0);
+    EXPECT_TRUE(done["error_estimate"].is_number());
+    auto png = client_->Get(("/jobs/" + id + "/image.png").c_str());
+    ASSERT_TRUE(png);
+    EXPECT_EQ(decode_png(png->body).width, 40);
+    auto pfm = client_->Get(("/jobs/" + id + "/image.pfm").c_str());
+    ASSERT_TRUE(pfm);
+    EXPECT_EQ(decode_pfm(std::vector<uint8_t>(pfm->body.begin(), pfm->body.end())).height, 30);
+    bool listed = false;
+    for (const auto& j : get_json("/jobs")) listed |= j["id"] == id;
+    EXPECT_TRUE(listed);
+}
+
+TEST_F(Server, BadInputGetsAStatusAndAJsonBody) {
+    EXPECT_TRUE(post("/jobs", R"({"preset": )", 400)["error"].get<std::string>().starts_with("malformed JSON"));
+    const json invalid = post("/jobs", R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]})", 422);
+    EXPECT_EQ(invalid["path"], "objects[0].radius");
+    EXPECT_EQ(invalid["error"], "must be > 0");
+    EXPECT_EQ(post("/jobs", R"({"preset": "cornell", "spp": 100000000})", 422)["error"], "must be an integer in [1, 65536]");
+    EXPECT_EQ(post("/jobs", R"({"film": {"width": 4096, "height": 4097}})", 422)["path"], "film.height");
+    EXPECT_EQ(post("/jobs", R"({"preset": "../cornell"})", 404)["path"], "preset");
+    EXPECT_EQ(post("/jobs", R"({"preset": "cornell", "colour": 1})", 422)["path"], "colour");
+    EXPECT_EQ(get_json("/jobs/0123456789abcdef", 404)["error"], "no job 0123456789abcdef");
+    EXPECT_EQ(get_json("/no/such/route", 404)["error"], "no such route or file");
+    // Rejected requests leave no job behind.
+    EXPECT_TRUE(get_json("/jobs").empty());
+}
+
+TEST_F(Server, OversizedBodiesGet413) {
+    HttpConfig http;
+    http.max_body_bytes = 1000;
+    start({}, http);
+    const json body = post("/jobs", R"({"description": ")" + std::string(5000, 'x') + R"("})", 413);
+    EXPECT_EQ(body["error"], "request body too large");
+}
+
+TEST_F(Server, AFullQueueGets429WithRetryAfter) {
+    ServiceConfig service;
+    service.max_running = 1;
+    service.max_queued = 1;
+    start(service);
+    const std::string slow = R"({"preset": "cornell", "width": 64, "height": 48, "spp": 65536})";
+    const std::string first = post("/jobs", slow, 202)["id"];
+    for (int i = 0; i < 100 && get_json("/jobs/" + first)["state"] == "queued"; ++i) std::this_thread::sleep_for(20ms);
+    const std::string second = post("/jobs", slow, 202)["id"];  // waits in the queue
+    auto res = client_->Post("/jobs", slow, "application/json");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 429);
+    EXPECT_EQ(res->get_header_value("Retry-After"), "5");
+    EXPECT_EQ(json::parse(res->body)["error"], "too many queued jobs (limit 1)");
+    // The jobs in flight are untouched by the refusal; cancelling them works.
+    EXPECT_EQ(get_json("/jobs/" + first)["state"], "running");
+    EXPECT_EQ(client_->Delete(("/jobs/" + second).c_str())->status, 200);
+    EXPECT_EQ(client_->Delete(("/jobs/" + first).c_str())->status, 200);
+    EXPECT_EQ(wait_until_final(first)["state"], "cancelled");
+    EXPECT_EQ(wait_until_final(second)["state"], "cancelled");
+}
+
+TEST_F(Server, CancelledJobsKeepWhatTheyRendered) {
+    const std::string id = post("/jobs", R"({"preset": "cornell", "width": 64, "height": 48, "spp": 65536})", 202)["id"];
+    for (int i = 0; i < 200 && get_json("/jobs/" + id)["spp_done"] == 0; ++i) std::this_thread::sleep_for(20ms);
+    EXPECT_EQ(client_->Delete(("/jobs/" + id).c_str())->status, 200);
+    const json s = wait_until_final(id);
+    EXPECT_EQ(s["state"], "cancelled");
+    EXPECT_GT(s["spp_done"].get<int>(), 0);
+    EXPECT_EQ(decode_png(client_->Get(("/jobs/" + id + "/image.png").c_str())->body).width, 64);
+}
+
+// Splits a multipart/x-mixed-replace body into its parts' payloads.
+std::vector<std::string> parts(const std::string& body) {
+    std::vector<std::string> out;
+    const std::string marker = "Content-Length: ";
+    for (size_t at = body.find(marker); at != std::string::npos; at = body.find(marker, at)) {
+        const size_t length = std::stoul(body.substr(at + marker.size()));
+        const size_t start = body.find("\r\n\r\n", at) + 4;
+        out.push_back(body.substr(start, length));
+        at = start + length;
+    }
+    return out;
+}
+
+TEST_F(Server, StreamYieldsDecodablePngsOfTheRequestedSizeAndEnds) {
+    const std::string id = post("/jobs", R"({"preset": "cornell", "width": 48, "height": 36, "spp": 64})", 202)["id"];
+    auto res = client_->Get(("/jobs/" + id + "/stream").c_str());
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->get_header_value("Content-Type"), "multipart/x-mixed-replace; boundary=frame");
+    const std::vector<std::string> pngs = parts(res->body);
+    ASSERT_GE(pngs.size(), 2u);
+    for (const std::string& png : pngs) {
+        const Decoded d = decode_png(png);
+        EXPECT_EQ(d.width, 48);
+        EXPECT_EQ(d.height, 36);
+    }
+    EXPECT_TRUE(res->body.ends_with("--frame--\r\n"));
+}
+
+TEST_F(Server, EventsReportProgressThenDone) {
+    const std::string id = post("/jobs", R"({"preset": "cornell", "width": 48, "height": 36, "spp": 64})", 202)["id"];
+    auto res = client_->Get(("/jobs/" + id + "/events").c_str());
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->get_header_value("Content-Type"), "text/event-stream");
+    EXPECT_NE(res->body.find("event: progress\ndata: {"), std::string::npos);
+    const size_t done = res->body.find("event: done\ndata: ");
+    ASSERT_NE(done, std::string::npos);
+    const json last = json::parse(res->body.substr(done + 18, res->body.find('\n', done + 18) - done - 18));
+    EXPECT_EQ(last["state"], "done");
+    EXPECT_EQ(last["spp_done"], 64);
+}
+
+TEST_F(Server, AClientThatLeavesMidStreamIsCleanedUp) {
+    const std::string id = post("/jobs", R"({"preset": "cornell", "width": 48, "height": 36, "spp": 65536})", 202)["id"];
+    size_t received = 0;
+    auto res = client_->Get(("/jobs/" + id + "/stream").c_str(), [&](const char*, size_t n) {
+        received += n;
+        return received < 100;  // hang up after the first bytes
+    });
+    EXPECT_FALSE(res);  // the client cancelled the transfer
+    int open = 1;
+    for (int i = 0; i < 100 && open != 0; ++i) {
+        std::this_thread::sleep_for(50ms);
+        open = get_json("/health")["open_streams"];
+    }
+    EXPECT_EQ(open, 0);
+    EXPECT_EQ(get_json("/jobs/" + id)["state"], "running");  // watching is not owning
+    client_->Delete(("/jobs/" + id).c_str());
+}
+
+TEST_F(Server, RenderClientThatGoesAwayCancelsItsJob) {
+    // The client leaves once the response's headers have come, so the job exists by then however
+    // slowly the server runs (a client that gave up after a fixed time could leave before the
+    // server had read its request: seen under ThreadSanitizer).
+    std::string id;
+    {
+        testing::RawConnection impatient(service_->port());
+        const std::string body = R"({"preset": "cornell", "width": 64, "height": 48, "spp": 65536})";
+        impatient.send("POST /render HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: " +
+                       std::to_string(body.size()) + "\r\n\r\n" + body);
+        const std::string headers = impatient.read_headers(60s);
+        ASSERT_EQ(testing::status_of(headers), 200) << headers;
+        const std::string field = "X-Glint-Job: ";
+        const size_t at = headers.find(field);
+        ASSERT_NE(at, std::string::npos) << headers;
+        id = headers.substr(at + field.size(), 16);
+    }
+    EXPECT_EQ(wait_until_final(id)["state"], "cancelled");
+}
+
+TEST_F(Server, SeveralJobsAtOnceAllFinish) {
+    std::vector<std::string> ids;
+    for (int i = 0; i < 4; ++i)
+        ids.push_back(post("/jobs", R"({"preset": "cornell", "width": 32, "height": 24, "spp": 32, "seed": )" +
+                                        std::to_string(i) + "}",
+                           202)["id"]);
+    for (const auto& id : ids) EXPECT_EQ(wait_until_final(id)["state"], "done");
+}
+
+TEST_F(Server, ASmallJobIsNotStarvedBehindALargeOne) {
+    const std::string large = post("/jobs", R"({"preset": "cornell", "width": 128, "height": 96, "spp": 65536})", 202)["id"];
+    for (int i = 0; i < 200 && get_json("/jobs/" + large)["spp_done"] == 0; ++i) std::this_thread::sleep_for(20ms);
+    const std::string small = post("/jobs", R"({"preset": "cornell", "width": 32, "height": 24, "spp": 16})", 202)["id"];
+    // Both jobs render at once: the small one finishes while the large one (hours of work) is
+    // still running. (That their tiles alternate is proven by ThreadPool.BatchesTakeTurns.)
+    EXPECT_EQ(wait_until_final(small)["state"], "done");
+    EXPECT_EQ(get_json("/jobs/" + large)["state"], "running");
+    client_->Delete(("/jobs/" + large).c_str());
+}
+
+TEST_F(Server, ServesTheWebPage) {
+    auto res = client_->Get("/");
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 200);
+    EXPECT_NE(res->body.find("<title>glint</title>"), std::string::npos);
+    EXPECT_EQ(client_->Get("/../CMakeLists.txt")->status, 403);  // see test_guarded_server.cpp
+}
+
+}  // namespace
+}  // namespace glint
