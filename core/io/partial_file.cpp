@@ -68,6 +68,16 @@ std::string range(const Partial& p) {
 
 }  // namespace
 
+Partial partial_of(const RenderJob& render, uint64_t fingerprint, uint32_t spp_done) {
+    Partial p;
+    p.fingerprint = fingerprint;
+    p.first_sample = render.settings().first_sample;
+    p.end_sample = render.settings().first_sample + spp_done;
+    p.encoding = render.settings().encoding;
+    p.film = render.film();
+    return p;
+}
+
 std::vector<uint8_t> encode_partial(const Partial& p) {
     Writer w;
     w.bytes.reserve(kHeader + kPixel * p.film.pixels().size() + kTrailer);

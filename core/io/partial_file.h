@@ -23,8 +23,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "render/film.h"
 #include "io/image_io.h"
+#include "render/film.h"
+#include "render/renderer.h"
 #include "render/sampler.h"
 
 namespace glint {
@@ -40,6 +41,11 @@ struct Partial {
     Encoding encoding = Encoding::gamma22;
     Film film{1, 1};
 };
+
+// The film of `render` holding samples [first_sample, first_sample + spp_done) of every pixel;
+// `fingerprint` is that of its scene and settings (io/fingerprint.h). What `glint render
+// --partial` writes and what the service's store checkpoints and keeps when a job ends.
+Partial partial_of(const RenderJob& render, uint64_t fingerprint, uint32_t spp_done);
 
 std::vector<uint8_t> encode_partial(const Partial& partial);
 uint64_t partial_file_size(int width, int height);

@@ -16,7 +16,6 @@
 #include "io/fingerprint.h"
 #include "io/partial_file.h"
 #include "io/scene_loader.h"
-#include "service/job_film.h"
 
 namespace glint {
 namespace {

@@ -3,7 +3,6 @@
 #include <spdlog/spdlog.h>
 
 #include "io/fingerprint.h"
-#include "service/job_film.h"
 
 namespace glint {
 
