@@ -51,7 +51,7 @@ Times interleaved_times(const std::vector<std::function<double()>>& runs) {
 
 // The median over the rounds of a[round] / b[round]: a ratio of two runs taken in the same round
 // is paired, so it holds steady where the machine's drift between rounds moves both runs' times
-// alike (bench/BENCHMARKS.md, fifteenth and eighteenth rounds).
+// alike.
 double paired_ratio(const std::vector<double>& a, const std::vector<double>& b) {
     std::vector<double> ratios;
     for (size_t round = 0; round < a.size(); ++round) ratios.push_back(a[round] / b[round]);

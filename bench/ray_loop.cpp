@@ -8,8 +8,8 @@
 // high (Embree's build qualities); QUERY: closest | any. Prints each engine's fastest pass.
 // Several engines take turns pass by pass in the one process, and each after the first also gets
 // the median over the passes of the first's speed over its own: on a shared machine whose speed
-// drifts by a quarter within minutes, two passes a second apart see nearly the same machine
-// (bench/BENCHMARKS.md, fifteenth round). LIMIT traces only the first rays (0: all): a few
+// drifts by a quarter within minutes, two passes a second apart see nearly the same machine.
+// LIMIT traces only the first rays (0: all): a few
 // thousand rays traced many times stay in the cache. DUMP writes the first engine's answers
 // (closest: t, primitive and glint's barycentrics as doubles; any: 0 or 1), to compare two builds
 // bit for bit with cmp. With RAY_LOOP_REPEAT=i in the environment, every ray traced is ray i of the

@@ -11,24 +11,21 @@
 namespace glint {
 namespace {
 
-// Bins: 32 for nodes of kManyPrimitives or more, where the split decides the most rays (against
-// 16 everywhere, callgrind on Sponza: 6% fewer instructions for the diffuse rays, 10% for the
-// primary ones, for 4% more build instructions); at most 16 below, and one bin per primitive for
-// nodes of fewer, as more bins could not tell more splits apart and sweeping them dominated the
-// build.
+// Bins: 32 for nodes of kManyPrimitives or more, where the split decides the most rays, so a
+// finer choice of plane pays for the longer sweep; at most 16 below, and one bin per primitive
+// for nodes of fewer, as more bins could not tell more splits apart and sweeping them would
+// dominate the build.
 constexpr int kBins = 32;
 constexpr int kFewBins = 16;
 constexpr uint32_t kManyPrimitives = 1024;
 // Primitives binned per block (see best_sah_split).
 constexpr uint32_t kBinningBlock = 32;
-// Relative to one primitive test. Measured on the eight-wide tree (callgrind, Sponza's diffuse
-// rays; bytes from `glint trace-rays`): 1 gives the fewest instructions but half-empty nodes (bunny
-// 89.6 B/triangle, above Embree's 85); 2 costs 1.3% more instructions for 22% less memory (69.9
-// B/triangle); 3 costs 10% more instructions. The tree with spatial splits takes 1, which splits
-// nearly every node down to one triangle, and lets the collapse choose its leaves (bvh_collapse.h):
-// Sponza's diffuse rays 1-6% faster than with 3 in two alternated runs (bench/BENCHMARKS.md,
-// eleventh round). The binned tree keeps 2: with 1 its build took 1.01-1.06x Embree MEDIUM's time
-// (one run, on a busy machine).
+// Relative to one primitive test. Lower splits more: fewer primitive tests a ray, but more,
+// emptier nodes (more memory) and a longer build; higher makes larger leaves and more tests a
+// ray. 2 trades a few more instructions a ray for much less memory than 1 (`glint trace-rays`
+// reports the tree's bytes per triangle).
+// The tree with spatial splits takes 1, which splits nearly every node down to one triangle, and
+// lets the collapse choose its leaves (bvh_collapse.h).
 constexpr float kTraversalCost = 2.0f;
 constexpr float kSplitTreeTraversalCost = 1.0f;
 // build() makes a node of no more primitives than the step cost a leaf before any other check.
@@ -39,11 +36,9 @@ static_assert(kTraversalCost < BinaryTree::kMaxLeafSize + 1 && kSplitTreeTravers
 constexpr int kSahDepth = 64;
 // Spatial splits: the planes tried per axis, evenly spaced over the node's box, and Stich et
 // al.'s alpha: they are tried only where the object split's children overlap by more than this
-// share of the root's half area, as below that they gain little for a costly search. 32 slabs
-// against 16 (callgrind, Sponza's first 100k rays): 12% fewer instructions for the primary rays,
-// 4% for the diffuse ones; 48 gained no more. Alpha 1e-3 against Stich et al.'s 1e-5: the same
-// instructions within 0.1% on Sponza and the bunny, in a third of the build time; 1e-2 cost
-// Sponza 0.4-0.7% more (bench/BENCHMARKS.md, ninth round).
+// share of the root's half area, as below that they gain little for a costly search. More slabs
+// find better planes for a longer sweep per node. Alpha above Stich et al.'s 1e-5 searches fewer
+// nodes: a shorter build, for the few planes it misses in nodes whose children hardly overlap.
 constexpr int kSpatialBins = 32;
 constexpr float kOverlapShare = 1e-3f;
 

@@ -102,8 +102,8 @@ uint32_t Geometry::leave_out_key(uint32_t prim) const { return split_triangles_ 
 
 // Where each triangle has one position, by table on the position: 0 from four lanes on
 // (kNoPrimitive and positions before `first` included). With split triangles, by comparing the
-// run's four triangle indices, which cost the binned tree 1-4% (bench/BENCHMARKS.md, eighth
-// round), so only there. A lane past the end of a shorter run names no triangle of it, and the
+// run's four triangle indices, a load and a compare more per leaf than the table, so only
+// there. A lane past the end of a shorter run names no triangle of it, and the
 // run test looks only at the run's own lanes.
 inline unsigned Geometry::lanes_of(uint32_t key, uint32_t first) const {
     if (!split_triangles_) {

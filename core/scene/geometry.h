@@ -12,8 +12,8 @@
 namespace glint {
 
 // `list` tests every primitive (smallpt's way); `automatic` picks it for scenes so small that a
-// tree costs more than it saves (smallpt's 9 spheres render 1.35-1.5x faster without one, see
-// bench/BENCHMARKS.md), else the BVH.
+// tree costs more than it saves (up to kListMaxPrimitives: testing them all is cheaper than a
+// traversal's set-up and its node visits), else the BVH.
 enum class Accelerator { automatic, bvh, list };
 inline constexpr uint32_t kListMaxPrimitives = 16;
 
@@ -23,8 +23,8 @@ enum class BvhBuild { binned, spatial_splits };
 
 // The instruction set the triangle queries run in. Both paths compute 256-bit vectors and
 // answer bit for bit alike; AVX-512VL's EVEX encoding gives them 32 vector registers instead of
-// AVX2's 16, room for more of the box test's ray constants (GCC still loads some from the stack;
-// bench/BENCHMARKS.md, fourth round).
+// AVX2's 16, room for more of the box test's ray constants (GCC still loads some from the
+// stack).
 enum class Isa { avx2, avx512 };
 // The widest this processor and its operating system support, found once per process.
 Isa best_isa();
