@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "embree_scene.h"
+#include "spatial_splits.h"
 #include "scene/geometry.h"
 #include "io/obj_loader.h"
 #include "io/ray_file.h"
@@ -99,7 +100,12 @@ double timed_pass(size_t n, std::vector<Answer>& answers, Trace&& trace) {
 
 class GlintEngine final : public Engine {
 public:
-    GlintEngine(const ObjMesh& mesh, BvhBuild build, Isa isa) : geometry_({}, to_triangles(mesh), Accelerator::bvh, build) {
+    // `split`: the tree with spatial splits (spatial_splits.h).
+    GlintEngine(const ObjMesh& mesh, bool split, Isa isa) {
+        const std::vector<Triangle> triangles = to_triangles(mesh);
+        const std::vector<Triangle> stored = split ? stored_triangles(triangles) : std::vector<Triangle>{};
+        const SpatialSplitter splitter(stored);
+        geometry_ = Geometry({}, triangles, Accelerator::bvh, split ? &splitter : nullptr);
         geometry_.set_isa(isa);
         if (std::getenv("RAY_LOOP_STATS")) print_tree_stats(geometry_.triangle_bvh());
     }
@@ -167,8 +173,7 @@ std::unique_ptr<Engine> make_engine(std::string name, const ObjMesh& mesh) {
     const bool want_avx2 = name.ends_with(avx2);
     if (want_avx2) name.resize(name.size() - avx2.size());
     if (name == "glint" || name == "glint-split")
-        return std::make_unique<GlintEngine>(mesh, name == "glint" ? BvhBuild::binned : BvhBuild::spatial_splits,
-                                             want_avx2 ? Isa::avx2 : best_isa());
+        return std::make_unique<GlintEngine>(mesh, name == "glint-split", want_avx2 ? Isa::avx2 : best_isa());
     if (!want_avx2 && (name == "medium" || name == "high"))
         return std::make_unique<EmbreeEngine>(mesh, name == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
     return nullptr;

@@ -24,12 +24,12 @@ public:
 
     Bvh() = default;
     // Builds over primitives 0..n-1; primitives with empty boxes are left out of the tree.
-    // With `splits` (triangles only), the tree may hold a primitive in several leaves.
+    // With a `splitter` (sah_builder.h), the tree may hold a primitive in several leaves.
     // Throws std::length_error beyond ChildRef::kMaxPrimitives references.
-    static Bvh build(std::span<const Bounds3> prim_bounds, const SpatialSplits* splits = nullptr);
+    static Bvh build(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter = nullptr);
 
     // Build order: position -> primitive. The tree's references come first (the leaves cover
-    // positions 0..tree_size()-1; with spatial splits a primitive may appear more than once),
+    // positions 0..tree_size()-1; with a splitter a primitive may appear more than once),
     // the primitives left out follow.
     const std::vector<uint32_t>& order() const { return order_; }
     uint32_t tree_size() const { return tree_size_; }

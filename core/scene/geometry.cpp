@@ -19,7 +19,7 @@ void Geometry::set_isa(Isa isa) {
 }
 
 Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles, Accelerator accelerator,
-                   BvhBuild build)
+                   const ReferenceSplitter* splitter)
     : spheres_(std::move(spheres)), accelerator_(accelerator) {
     std::vector<PackedTriangle> packed;
     std::vector<Bounds3> triangle_bounds;
@@ -46,14 +46,7 @@ Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& tri
     sphere_bounds.reserve(spheres_.size());
     for (const Sphere& s : spheres_) sphere_bounds.push_back(s.bounds());
     sphere_bvh_ = Bvh::build(sphere_bounds);
-
-    std::vector<Triangle> unpacked;
-    if (build == BvhBuild::spatial_splits) {
-        unpacked.reserve(packed.size());
-        for (const PackedTriangle& p : packed) unpacked.push_back(p.unpack());
-    }
-    const SpatialSplits splits{unpacked};
-    triangle_bvh_ = Bvh::build(triangle_bounds, build == BvhBuild::spatial_splits ? &splits : nullptr);
+    triangle_bvh_ = Bvh::build(triangle_bounds, splitter);
     triangle_at_ = triangle_bvh_.order();
     position_of_.resize(packed.size());
     for (uint32_t pos = 0; pos < triangle_at_.size(); ++pos) position_of_[triangle_at_[pos]] = pos;

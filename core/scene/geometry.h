@@ -17,10 +17,6 @@ namespace glint {
 enum class Accelerator { automatic, bvh, list };
 inline constexpr uint32_t kListMaxPrimitives = 16;
 
-// How the triangles' tree is built: binned SAH alone, or with spatial splits besides (see
-// sah_builder.h), which builds slower and traces faster where long or oblique triangles overlap.
-enum class BvhBuild { binned, spatial_splits };
-
 // The instruction set the triangle queries run in. Both paths compute 256-bit vectors and
 // answer bit for bit alike; AVX-512VL's EVEX encoding gives them 32 vector registers instead of
 // AVX2's 16, room for more of the box test's ray constants (GCC still loads some from the
@@ -45,8 +41,10 @@ struct Hit {
 class Geometry {
 public:
     Geometry() = default;
+    // `splitter`, if given, may also split the triangles' tree by planes that cut triangles
+    // (sah_builder.h); its primitive i is triangle i as stored (float vertices).
     Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles,
-             Accelerator accelerator = Accelerator::automatic, BvhBuild build = BvhBuild::binned);
+             Accelerator accelerator = Accelerator::automatic, const ReferenceSplitter* splitter = nullptr);
 
     size_t sphere_count() const { return spheres_.size(); }
     size_t triangle_count() const { return triangle_count_; }
@@ -118,7 +116,7 @@ private:
     Isa isa_ = best_isa();
     Bvh sphere_bvh_, triangle_bvh_;
     size_t triangle_count_ = 0;
-    bool split_triangles_ = false;  // some triangle lies in several leaves (BvhBuild::spatial_splits)
+    bool split_triangles_ = false;  // some triangle lies in several leaves (built with a splitter)
     size_t degenerate_ = 0;
 };
 

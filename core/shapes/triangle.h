@@ -158,14 +158,6 @@ struct Triangle {
     }
 
     SurfaceInteraction interaction(const TriangleHit& hit, uint32_t prim) const;
-    // A box around the part of the triangle inside `box` (empty if none), for spatial splits:
-    // never smaller than that part, and at most a few float units wider.
-    Bounds3 clipped_bounds(const Bounds3& box) const;
-    // A box around the part of the triangle in the slab lower <= x[axis] <= upper: the vertices
-    // inside it and the points where the edges cross its planes. Cheaper than clipped_bounds
-    // (no polygon), and exact but for the crossings' rounding, which may leave a part a few
-    // units in the last place outside it: for estimates, such as the spatial splits' costs.
-    Bounds3 slab_bounds(int axis, double lower, double upper) const;
 };
 
 // A triangle as the scene stores it: single-precision vertices (what OBJ files hold), 36 bytes
