@@ -47,8 +47,8 @@ public:
     // Closest hit. `test(first, count, ray)` intersects the leaf's primitives at build-order
     // positions first..first+count-1, in that order, shrinking ray.tmax to each hit, and returns
     // whether any was hit. Returns whether anything was hit.
-    // Always inlined, as is any(): the call's prologue, spills and epilogue were ~50 of a
-    // primary ray's 680 instructions. kAvx512: the caller runs on AVX-512, whose embedded
+    // Always inlined, as is any(): a call's prologue, spills and epilogue would be a sizeable
+    // share of a short traversal, such as a primary ray's. kAvx512: the caller runs on AVX-512, whose embedded
     // rounding shortens the step from a hit to the next box test.
     template <bool kAvx512 = false, typename Test>
     [[gnu::always_inline]] bool closest(Ray& ray, Test&& test) const {
@@ -244,9 +244,8 @@ private:
         high = a ^ b ^ low;  // keys differ in their ChildRefs, so this is the other one
     }
 
-    // Three or more children (on the eight-wide tree, 14% of the node visits of Sponza's diffuse
-    // rays, against 17% for two and 39% for one): pushes them all, sorted so that the nearest is
-    // on top, and returns the new top of the stack.
+    // Three or more children (one and two take cheaper paths of their own, in closest()):
+    // pushes them all, sorted so that the nearest is on top, and returns the new top of the stack.
     static uint64_t* push_sorted(const uint64_t* keys, unsigned mask, uint64_t nearer, uint64_t farther,
                                  uint64_t* top) {
         // The third, most often the last, joins the sorted pair by selects: no mispredicted exit

@@ -231,8 +231,7 @@ private:
 
     // Moves the primitives left of the split to the front (in std::partition's order), and
     // gathers each side's extent on the way, so that the children need no pass of their own over
-    // their primitives (the binned build about 4% faster on Sponza). Returns where the right
-    // side begins.
+    // their primitives. Returns where the right side begins.
     uint32_t partition(uint32_t begin, uint32_t end, const Split& split, Extent& left, Extent& right) {
         const auto on_left = [&](const BuildPrim& p) { return p.bin[split.axis] < split.bin; };
         uint32_t lo = begin, hi = end;
@@ -333,8 +332,9 @@ private:
     // The primitives fill the bins of all three axes and note their bins; the cost is the
     // unnormalised SAH sum. Block by block, the bins are found first and filled after: neighbours
     // often share a bin, and filling a bin whose address came out of the long chain of the
-    // binning arithmetic kept the processor from running ahead to the next primitive's update
-    // (32 against one loop: Sponza's build 7% faster, the bunny's 6%).
+    // binning arithmetic keeps the processor from running ahead to the next primitive's update.
+    // kBinningBlock primitives a block: enough to run ahead on, few enough that the second loop
+    // finds them still in the cache.
     Split best_sah_split(uint32_t begin, uint32_t end, const Binning& binning) {
         // Only the bins in use are set up: clearing all of them cost more than binning small nodes.
         Bins bins;
@@ -445,9 +445,9 @@ BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const ReferenceS
     prims.reserve(prim_bounds.size());
     for (uint32_t i = 0; i < prim_bounds.size(); ++i) {
         if (prim_bounds[i].empty()) continue;
-        // Field by field: built whole, the primitive went through the stack, where loading its
-        // index and bins as one 16-byte word waited for their narrower stores (perf: a quarter
-        // of this function's time).
+        // Field by field: built whole, the primitive goes through the stack, where loading its
+        // index and bins as one 16-byte word waits for their narrower stores (a failed store
+        // forwarding, in the loop over every primitive).
         BuildPrim& p = prims.emplace_back();
         p.box = SseBox::enclosing(prim_bounds[i]);
         p.index = i;

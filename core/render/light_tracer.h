@@ -13,9 +13,9 @@
 // - the vertices are handed back as a LightPath, to whose vertices the path tracer connects each
 //   diffuse vertex x of the camera path (bidirectional path tracing's connection strategy,
 //   restricted to these light paths), again weighted against the path tracer's own bounces.
-// On smallpt's box, before these connections, such paths carried 82% of the variance, most of
-// it through specular-diffuse-specular chains (the balls seen from the walls lit through the
-// balls). Continuing from y diffusely to any surface (caustics seen after more diffuse bounces)
+// Without the connections, such paths carry most of the variance of smallpt's box, through
+// specular-diffuse-specular chains (the balls seen from the walls lit through the balls), which
+// the path tracer alone finds only by chance. Continuing from y diffusely to any surface (caustics seen after more diffuse bounces)
 // cost as much as the camera paths and gained less than it cost: connections reach those
 // paths from the camera side.
 //
