@@ -15,9 +15,10 @@
 //   restricted to these light paths), again weighted against the path tracer's own bounces.
 // Without the connections, such paths carry most of the variance of smallpt's box, through
 // specular-diffuse-specular chains (the balls seen from the walls lit through the balls), which
-// the path tracer alone finds only by chance. Continuing from y diffusely to any surface (caustics seen after more diffuse bounces)
-// cost as much as the camera paths and gained less than it cost: connections reach those
-// paths from the camera side.
+// the path tracer alone finds only by chance. Light paths stop at the first diffuse bounce
+// that meets a diffuse surface: going on to any surface (caustics seen after more diffuse
+// bounces) would cost as much as the camera paths, and connections reach those paths from the
+// camera side.
 //
 // A path x → v → (specular+ → diffuse)* → specular+ → light has exactly two strategies: the
 // path tracer's bounces, and the light path's vertex v met from x (a connection) or from the
