@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# Side-by-side timings of ray_loop builds (bench/BENCHMARKS.md, ninth round on): each round runs
+# Side-by-side timings of ray_loop builds: each round runs
 # every BINARY:ENGINE once on each set, in turn, so that a burst of load falls on all of them; it
 # prints each one's median over the rounds of ray_loop's fastest pass (3 passes a run), and for
 # every build after the first, the median over the rounds of the first's speed over its own: a
 # ratio of two runs seconds apart, which a slow spell of the machine moves less than a ratio of
-# medians (bench/BENCHMARKS.md, thirteenth round).
+# medians.
 #   bench/alternate_ray_loop.sh QUERY ROUNDS "MESH KIND"... -- BINARY:ENGINE...
 # QUERY: closest | any; ENGINE: glint | glint-split | medium | high (see ray_loop.cpp). Copy the
 # builds to compare out of build/bench first; SHARED (default ../shared) holds the meshes and rays.

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "embree_scene.h"
+#include "spatial_splits.h"
 #include "scene/geometry.h"
 #include "io/obj_loader.h"
 #include "io/ray_file.h"
@@ -51,7 +52,7 @@ Times interleaved_times(const std::vector<std::function<double()>>& runs) {
 
 // The median over the rounds of a[round] / b[round]: a ratio of two runs taken in the same round
 // is paired, so it holds steady where the machine's drift between rounds moves both runs' times
-// alike (bench/BENCHMARKS.md, fifteenth and eighteenth rounds).
+// alike.
 double paired_ratio(const std::vector<double>& a, const std::vector<double>& b) {
     std::vector<double> ratios;
     for (size_t round = 0; round < a.size(); ++round) ratios.push_back(a[round] / b[round]);
@@ -124,6 +125,13 @@ std::string format(const char* f, Args... args) {
     return line;
 }
 
+// glint's tree with spatial splits (spatial_splits.h) over `triangles`.
+Geometry split_geometry(const std::vector<Triangle>& triangles) {
+    const std::vector<Triangle> stored = stored_triangles(triangles);
+    const SpatialSplitter splitter(stored);
+    return Geometry({}, triangles, Accelerator::bvh, &splitter);
+}
+
 void bench_mesh(const std::string& shared, const std::string& name) {
     const ObjMesh mesh = load_obj(shared + "/scenes/meshes/" + name + ".obj", size_t(1) << 30);
     const std::vector<Triangle> triangles = to_triangles(mesh);
@@ -133,7 +141,7 @@ void bench_mesh(const std::string& shared, const std::string& name) {
     // Embree's timed around rtcCommitScene alone.
     const Times builds = interleaved_times({
         [&] { return seconds([&] { glint_bvh = Geometry({}, triangles, Accelerator::bvh); }); },
-        [&] { return seconds([&] { split_bvh = Geometry({}, triangles, Accelerator::bvh, BvhBuild::spatial_splits); }); },
+        [&] { return seconds([&] { split_bvh = split_geometry(triangles); }); },
         [&] { double s; const Embree scene(mesh, RTC_BUILD_QUALITY_MEDIUM, s); return s; },
         [&] { double s; const Embree scene(mesh, RTC_BUILD_QUALITY_HIGH, s); return s; },
     });

@@ -4,11 +4,13 @@
 # `glint trace-rays` writes the same hit files on every shared ray set (closest and any hit).
 #   bench/check_identical.sh REV        e.g. bench/check_identical.sh rehouse-base
 # Prints one line per comparison and exits non-zero if any differs. OLD_GLINT and NEW_GLINT in the
-# environment name binaries already built, for REV and for this tree, instead of building them.
+# environment name binaries already built, for REV and for this tree, instead of building them;
+# SHARED the folder of the shared meshes and ray sets (default: ../shared beside the tree).
 set -euo pipefail
 rev=${1:?usage: bench/check_identical.sh REV}
 root=$(cd "$(dirname "$0")/.." && pwd)
-shared=$root/../shared
+shared=${SHARED:-$root/../shared}
+[ -d "$shared/rays" ] || { echo "no ray sets in $shared/rays: set SHARED" >&2; exit 2; }
 work=$(mktemp -d)
 trap 'git -C "$root" worktree remove --force "$work/src" >/dev/null 2>&1 || true; rm -rf "$work"' EXIT
 

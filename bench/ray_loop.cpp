@@ -8,8 +8,8 @@
 // high (Embree's build qualities); QUERY: closest | any. Prints each engine's fastest pass.
 // Several engines take turns pass by pass in the one process, and each after the first also gets
 // the median over the passes of the first's speed over its own: on a shared machine whose speed
-// drifts by a quarter within minutes, two passes a second apart see nearly the same machine
-// (bench/BENCHMARKS.md, fifteenth round). LIMIT traces only the first rays (0: all): a few
+// drifts by a quarter within minutes, two passes a second apart see nearly the same machine.
+// LIMIT traces only the first rays (0: all): a few
 // thousand rays traced many times stay in the cache. DUMP writes the first engine's answers
 // (closest: t, primitive and glint's barycentrics as doubles; any: 0 or 1), to compare two builds
 // bit for bit with cmp. With RAY_LOOP_REPEAT=i in the environment, every ray traced is ray i of the
@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "embree_scene.h"
+#include "spatial_splits.h"
 #include "scene/geometry.h"
 #include "io/obj_loader.h"
 #include "io/ray_file.h"
@@ -99,7 +100,12 @@ double timed_pass(size_t n, std::vector<Answer>& answers, Trace&& trace) {
 
 class GlintEngine final : public Engine {
 public:
-    GlintEngine(const ObjMesh& mesh, BvhBuild build, Isa isa) : geometry_({}, to_triangles(mesh), Accelerator::bvh, build) {
+    // `split`: the tree with spatial splits (spatial_splits.h).
+    GlintEngine(const ObjMesh& mesh, bool split, Isa isa) {
+        const std::vector<Triangle> triangles = to_triangles(mesh);
+        const std::vector<Triangle> stored = split ? stored_triangles(triangles) : std::vector<Triangle>{};
+        const SpatialSplitter splitter(stored);
+        geometry_ = Geometry({}, triangles, Accelerator::bvh, split ? &splitter : nullptr);
         geometry_.set_isa(isa);
         if (std::getenv("RAY_LOOP_STATS")) print_tree_stats(geometry_.triangle_bvh());
     }
@@ -167,8 +173,7 @@ std::unique_ptr<Engine> make_engine(std::string name, const ObjMesh& mesh) {
     const bool want_avx2 = name.ends_with(avx2);
     if (want_avx2) name.resize(name.size() - avx2.size());
     if (name == "glint" || name == "glint-split")
-        return std::make_unique<GlintEngine>(mesh, name == "glint" ? BvhBuild::binned : BvhBuild::spatial_splits,
-                                             want_avx2 ? Isa::avx2 : best_isa());
+        return std::make_unique<GlintEngine>(mesh, name == "glint-split", want_avx2 ? Isa::avx2 : best_isa());
     if (!want_avx2 && (name == "medium" || name == "high"))
         return std::make_unique<EmbreeEngine>(mesh, name == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
     return nullptr;

@@ -6,10 +6,10 @@
 
 namespace glint {
 
-Bvh Bvh::build(std::span<const Bounds3> prim_bounds, const SpatialSplits* splits) {
-    const double references = double(prim_bounds.size()) * (1 + (splits ? splits->budget : 0));
+Bvh Bvh::build(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter) {
+    const double references = double(prim_bounds.size()) * (1 + (splitter ? splitter->budget() : 0));
     if (references > ChildRef::kMaxPrimitives) throw std::length_error("too many primitives for one BVH");
-    BinaryTree tree = build_sah_tree(prim_bounds, splits);
+    BinaryTree tree = build_sah_tree(prim_bounds, splitter);
     Bvh bvh;
     if (!tree.nodes.empty()) bvh.nodes_ = collapse_to_wide(tree.nodes);
     bvh.tree_size_ = static_cast<uint32_t>(tree.order.size());

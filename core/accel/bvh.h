@@ -13,48 +13,10 @@
 #include <vector>
 
 #include "base/bounds.h"
-#include "accel/ray_box_test.h"
+#include "accel/bvh_node.h"
 #include "accel/sah_builder.h"
 
 namespace glint {
-
-// Where a child slot leads, in one word. A leaf: its first position in build order, shifted
-// left by three, and its primitive count (1..kMaxLeafSize) in the low three bits. An inner node:
-// its offset in the node array in 8-byte units (a multiple of eight, so the low bits are 0),
-// which the traversal turns into an address with one scaled add. One word per child keeps a
-// node at 448 bytes and lets the traversal stack hold a child and its entry distance in one
-// 64-bit key.
-struct ChildRef {
-    static constexpr uint32_t kCountBits = 3;
-    static constexpr uint32_t kNodeUnits = 56;  // sizeof(BvhNode) / 8
-    // Keeps every offset in 32 bits: a tree has fewer nodes than primitives.
-    static constexpr uint32_t kMaxPrimitives = uint32_t{1} << 26;
-    static constexpr uint32_t node(uint32_t index) { return index * kNodeUnits; }
-    static constexpr uint32_t leaf(uint32_t first, uint32_t count) { return first << kCountBits | count; }
-    static constexpr uint32_t node_index(uint32_t ref) { return ref / kNodeUnits; }
-    static constexpr uint32_t first(uint32_t ref) { return ref >> kCountBits; }
-    static constexpr uint32_t count(uint32_t ref) { return ref & ((1u << kCountBits) - 1); }
-};
-static_assert(BinaryTree::kMaxLeafSize < (1u << ChildRef::kCountBits));
-static_assert(uint64_t{ChildRef::kMaxPrimitives} * ChildRef::kNodeUnits < (uint64_t{1} << 32));
-
-// Children a node holds: two box tests' worth. Against eight, the SAH's expected node visits of
-// a ray fall by 26-31% on the bunny and Sponza, and each visit's two tests are independent, so
-// a visit waits for its memory about as long as before (bench/BENCHMARKS.md, nineteenth round).
-inline constexpr int kBvhWidth = 2 * kBoxLanes;
-
-// 448 bytes, seven cache lines: the boxes of up to sixteen children and where each child leads.
-// Slot s's box is lane s % 8 of boxes[s / 8].
-struct alignas(64) BvhNode {
-    WideBox boxes[kBvhWidth / kBoxLanes];
-    uint32_t child[kBvhWidth];  // ChildRef words; an unused slot holds 0 behind an empty box
-
-    float& plane(int p, int slot) { return boxes[slot / kBoxLanes].planes[p][slot % kBoxLanes]; }
-    float plane(int p, int slot) const { return boxes[slot / kBoxLanes].planes[p][slot % kBoxLanes]; }
-    bool used(int slot) const { return boxes[slot / kBoxLanes].used(slot % kBoxLanes); }
-    double half_area(int slot) const { return boxes[slot / kBoxLanes].half_area(slot % kBoxLanes); }
-};
-static_assert(sizeof(BvhNode) == 8 * ChildRef::kNodeUnits);
 
 class Bvh {
 public:
@@ -62,12 +24,12 @@ public:
 
     Bvh() = default;
     // Builds over primitives 0..n-1; primitives with empty boxes are left out of the tree.
-    // With `splits` (triangles only), the tree may hold a primitive in several leaves.
+    // With a `splitter` (sah_builder.h), the tree may hold a primitive in several leaves.
     // Throws std::length_error beyond ChildRef::kMaxPrimitives references.
-    static Bvh build(std::span<const Bounds3> prim_bounds, const SpatialSplits* splits = nullptr);
+    static Bvh build(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter = nullptr);
 
     // Build order: position -> primitive. The tree's references come first (the leaves cover
-    // positions 0..tree_size()-1; with spatial splits a primitive may appear more than once),
+    // positions 0..tree_size()-1; with a splitter a primitive may appear more than once),
     // the primitives left out follow.
     const std::vector<uint32_t>& order() const { return order_; }
     uint32_t tree_size() const { return tree_size_; }
@@ -85,8 +47,8 @@ public:
     // Closest hit. `test(first, count, ray)` intersects the leaf's primitives at build-order
     // positions first..first+count-1, in that order, shrinking ray.tmax to each hit, and returns
     // whether any was hit. Returns whether anything was hit.
-    // Always inlined, as is any(): the call's prologue, spills and epilogue were ~50 of a
-    // primary ray's 680 instructions. kAvx512: the caller runs on AVX-512, whose embedded
+    // Always inlined, as is any(): a call's prologue, spills and epilogue would be a sizeable
+    // share of a short traversal, such as a primary ray's. kAvx512: the caller runs on AVX-512, whose embedded
     // rounding shortens the step from a hit to the next box test.
     template <bool kAvx512 = false, typename Test>
     [[gnu::always_inline]] bool closest(Ray& ray, Test&& test) const {
@@ -107,8 +69,8 @@ public:
 
 private:
     // The traversals with RayBoxTest, for the rare rays FusedRayBoxTest does not cover, out of
-    // line: inlined beside the fused one, they made the closest-hit function 5.9 KB where it is
-    // now 3.7, and the fused traversal 1.5-3.5% slower (bench/BENCHMARKS.md, eighteenth round).
+    // line: inlined beside the fused one, they make the closest-hit function's code half again as
+    // large and crowd the fused traversal, which nearly every ray takes, out of registers.
     template <bool kAvx512, typename Test>
     [[gnu::noinline]] bool closest_unfused(Ray& ray, Test& test) const {
         return closest<kAvx512>(ray, RayBoxTest(ray), test);
@@ -282,9 +244,8 @@ private:
         high = a ^ b ^ low;  // keys differ in their ChildRefs, so this is the other one
     }
 
-    // Three or more children (on the eight-wide tree, 14% of the node visits of Sponza's diffuse
-    // rays, against 17% for two and 39% for one): pushes them all, sorted so that the nearest is
-    // on top, and returns the new top of the stack.
+    // Three or more children (one and two take cheaper paths of their own, in closest()):
+    // pushes them all, sorted so that the nearest is on top, and returns the new top of the stack.
     static uint64_t* push_sorted(const uint64_t* keys, unsigned mask, uint64_t nearer, uint64_t farther,
                                  uint64_t* top) {
         // The third, most often the last, joins the sorted pair by selects: no mispredicted exit

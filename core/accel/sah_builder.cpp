@@ -11,41 +11,25 @@
 namespace glint {
 namespace {
 
-// Bins: 32 for nodes of kManyPrimitives or more, where the split decides the most rays (against
-// 16 everywhere, callgrind on Sponza: 6% fewer instructions for the diffuse rays, 10% for the
-// primary ones, for 4% more build instructions); at most 16 below, and one bin per primitive for
-// nodes of fewer, as more bins could not tell more splits apart and sweeping them dominated the
-// build.
+// Bins: 32 for nodes of kManyPrimitives or more, where the split decides the most rays, so a
+// finer choice of plane pays for the longer sweep; at most 16 below, and one bin per primitive
+// for nodes of fewer, as more bins could not tell more splits apart and sweeping them would
+// dominate the build.
 constexpr int kBins = 32;
 constexpr int kFewBins = 16;
 constexpr uint32_t kManyPrimitives = 1024;
 // Primitives binned per block (see best_sah_split).
 constexpr uint32_t kBinningBlock = 32;
-// Relative to one primitive test. Measured on the eight-wide tree (callgrind, Sponza's diffuse
-// rays; bytes from `glint trace-rays`): 1 gives the fewest instructions but half-empty nodes (bunny
-// 89.6 B/triangle, above Embree's 85); 2 costs 1.3% more instructions for 22% less memory (69.9
-// B/triangle); 3 costs 10% more instructions. The tree with spatial splits takes 1, which splits
-// nearly every node down to one triangle, and lets the collapse choose its leaves (bvh_collapse.h):
-// Sponza's diffuse rays 1-6% faster than with 3 in two alternated runs (bench/BENCHMARKS.md,
-// eleventh round). The binned tree keeps 2: with 1 its build took 1.01-1.06x Embree MEDIUM's time
-// (one run, on a busy machine).
+// Relative to one primitive test. Lower splits more: fewer primitive tests a ray, but more,
+// emptier nodes (more memory) and a longer build; higher makes larger leaves and more tests a
+// ray. 2 trades a few more instructions a ray for much less memory than 1 (`glint trace-rays`
+// reports the tree's bytes per triangle). A ReferenceSplitter brings its own.
 constexpr float kTraversalCost = 2.0f;
-constexpr float kSplitTreeTraversalCost = 1.0f;
 // build() makes a node of no more primitives than the step cost a leaf before any other check.
-static_assert(kTraversalCost < BinaryTree::kMaxLeafSize + 1 && kSplitTreeTraversalCost < BinaryTree::kMaxLeafSize + 1,
-              "a leaf made for its step cost must fit kMaxLeafSize");
+static_assert(kTraversalCost < BinaryTree::kMaxLeafSize + 1, "a leaf made for its step cost must fit kMaxLeafSize");
 // Below this depth SAH decides; deeper, splits fall back to the median so the tree's depth
 // (and so the traversal stack) stays bounded whatever the input.
 constexpr int kSahDepth = 64;
-// Spatial splits: the planes tried per axis, evenly spaced over the node's box, and Stich et
-// al.'s alpha: they are tried only where the object split's children overlap by more than this
-// share of the root's half area, as below that they gain little for a costly search. 32 slabs
-// against 16 (callgrind, Sponza's first 100k rays): 12% fewer instructions for the primary rays,
-// 4% for the diffuse ones; 48 gained no more. Alpha 1e-3 against Stich et al.'s 1e-5: the same
-// instructions within 0.1% on Sponza and the bunny, in a third of the build time; 1e-2 cost
-// Sponza 0.4-0.7% more (bench/BENCHMARKS.md, ninth round).
-constexpr int kSpatialBins = 32;
-constexpr float kOverlapShare = 1e-3f;
 
 // A box in one SSE register per corner (x, y, z, unused): growing it is two instructions, which
 // is what binning does most. Float boxes rounded outward lose nothing the tree needs.
@@ -141,24 +125,18 @@ struct Split {
     float cost = std::numeric_limits<float>::infinity();
 };
 
-struct SpatialSplit {
-    int axis = -1;
-    double plane = 0;
-    float cost = std::numeric_limits<float>::infinity();
-};
-
 // Builds over prims_[0, n). A node owns a range of prims_ and the free slots after it up to its
-// capacity's end, which spatial splits fill with the references they add; each split shares
-// the free slots out between the children in proportion to their sizes (without spatial
-// splits there are none).
+// capacity's end, which splits by a plane fill with the references they add; each split shares
+// the free slots out between the children in proportion to their sizes (without a
+// ReferenceSplitter there are none).
 class Builder {
 public:
-    Builder(std::vector<BuildPrim> prims, const SpatialSplits* splits)
-        : prims_(std::move(prims)), splits_(splits), traversal_cost_(splits ? kSplitTreeTraversalCost : kTraversalCost) {}
+    Builder(std::vector<BuildPrim> prims, const ReferenceSplitter* splitter)
+        : prims_(std::move(prims)), splitter_(splitter), traversal_cost_(splitter ? splitter->traversal_cost() : kTraversalCost) {}
 
     BinaryTree run() {
         const auto n = static_cast<uint32_t>(prims_.size());
-        const auto capacity = splits_ ? n + static_cast<uint32_t>(splits_->budget * n) : n;
+        const auto capacity = splitter_ ? n + static_cast<uint32_t>(splitter_->budget() * n) : n;
         BinaryTree tree;
         tree.nodes.reserve(2 * capacity);
         tree.nodes.push_back({});
@@ -242,7 +220,7 @@ private:
             right = extent_of(mid, end);
         }
         if (capacity_end > end && depth < kSahDepth && overlap_enough(left.bounds, right.bounds) &&
-            split_spatially(node, child, depth, split.cost))
+            split_by_plane(node, child, depth, split.cost))
             return;
 
         // The right-hand references move up by the left child's share of the free slots.
@@ -253,8 +231,7 @@ private:
 
     // Moves the primitives left of the split to the front (in std::partition's order), and
     // gathers each side's extent on the way, so that the children need no pass of their own over
-    // their primitives (the binned build about 4% faster on Sponza). Returns where the right
-    // side begins.
+    // their primitives. Returns where the right side begins.
     uint32_t partition(uint32_t begin, uint32_t end, const Split& split, Extent& left, Extent& right) {
         const auto on_left = [&](const BuildPrim& p) { return p.bin[split.axis] < split.bin; };
         uint32_t lo = begin, hi = end;
@@ -278,35 +255,49 @@ private:
         build(first + 1, right, depth + 1);
     }
 
-    // Whether the boxes of an object split's children overlap enough for spatial splits.
+    // Whether the boxes of an object split's children overlap enough to look for a plane.
     bool overlap_enough(SseBox overlap, const SseBox& right) const {
         overlap.lo = _mm_max_ps(overlap.lo, right.lo);
         overlap.hi = _mm_min_ps(overlap.hi, right.hi);
-        return _mm_movemask_ps(_mm_cmpgt_ps(overlap.lo, overlap.hi)) == 0 && overlap.half_area() > kOverlapShare * root_area_;
+        return _mm_movemask_ps(_mm_cmpgt_ps(overlap.lo, overlap.hi)) == 0 &&
+               overlap.half_area() > splitter_->overlap_share() * root_area_;
     }
 
-    // Splits the node by the best plane cutting its triangles if that costs less than
-    // `object_cost` and the free slots hold the references it adds; returns whether it did.
-    bool split_spatially(uint32_t node, const Child& child, int depth, float object_cost) {
+    // Splits the node by the splitter's best plane if that costs less than `object_cost` and
+    // the free slots hold the references it adds; returns whether it did.
+    bool split_by_plane(uint32_t node, const Child& child, int depth, float object_cost) {
         const auto [begin, end, capacity_end, extent] = child;
-        const SpatialSplit spatial = best_spatial_split(begin, end, extent.bounds);
-        if (!(spatial.cost < object_cost)) return false;
+        boxes_.clear();
+        prim_ids_.clear();
+        for (uint32_t i = begin; i < end; ++i) {
+            boxes_.push_back(prims_[i].box.to_bounds());
+            prim_ids_.push_back(prims_[i].index);
+        }
+        SplitPlane plane;
+        if (!(splitter_->best_plane(boxes_, prim_ids_, extent.bounds.to_bounds(), plane) < object_cost)) return false;
         left_.clear();
         right_.clear();
         for (uint32_t i = begin; i < end; ++i) {
             const BuildPrim& p = prims_[i];
-            const Bounds3 box = p.box.to_bounds();
-            if (box.hi[spatial.axis] <= spatial.plane) {
+            const Bounds3& box = boxes_[i - begin];
+            if (box.hi[plane.axis] <= plane.position) {
                 left_.push_back(p);
-            } else if (box.lo[spatial.axis] >= spatial.plane) {
+            } else if (box.lo[plane.axis] >= plane.position) {
                 right_.push_back(p);
             } else {
                 Bounds3 below = box, above = box;
-                below.hi[spatial.axis] = above.lo[spatial.axis] = spatial.plane;
+                below.hi[plane.axis] = above.lo[plane.axis] = plane.position;
                 add_part(left_, p.index, below);
                 add_part(right_, p.index, above);
             }
         }
+        return place_sides(node, child, depth);
+    }
+
+    // Stores left_ and right_ as the node's children, sharing its free slots out between them;
+    // false if they do not fit or one is empty.
+    bool place_sides(uint32_t node, const Child& child, int depth) {
+        const uint32_t begin = child.begin, capacity_end = child.capacity_end;
         const auto n_left = static_cast<uint32_t>(left_.size()), n_right = static_cast<uint32_t>(right_.size());
         if (n_left == 0 || n_right == 0 || n_left + n_right > capacity_end - begin) return false;
         const auto to_left = static_cast<uint32_t>((capacity_end - begin - n_left - n_right) * uint64_t{n_left} / (n_left + n_right));
@@ -318,61 +309,10 @@ private:
         return true;
     }
 
-    // Adds a reference to the part of triangle `prim` inside `box`, if there is one.
+    // Adds a reference to the part of primitive `prim` inside `box`, if there is one.
     void add_part(std::vector<BuildPrim>& side, uint32_t prim, const Bounds3& box) const {
-        const Bounds3 part = splits_->triangles[prim].clipped_bounds(box);
+        const Bounds3 part = splitter_->part(prim, box);
         if (!part.empty()) side.push_back({SseBox::enclosing(part), prim, {}});
-    }
-
-    // Along each axis, kSpatialBins slabs of the node's box: each reference's part in each slab
-    // it crosses grows that slab's box, and it counts as entering its first slab and leaving
-    // its last. A plane between slabs has on its left the references entering before it and on
-    // its right those leaving after it: the cost sums their counts times their boxes' areas.
-    SpatialSplit best_spatial_split(uint32_t begin, uint32_t end, const SseBox& node_box) const {
-        const Bounds3 bounds = node_box.to_bounds();
-        SpatialSplit best;
-        for (int a = 0; a < 3; ++a) {
-            const double lo = bounds.lo[a], hi = bounds.hi[a];
-            if (!(hi > lo) || !std::isfinite(hi - lo)) continue;  // flat, or reaching infinity: no slabs
-            const double scale = kSpatialBins / (hi - lo);
-            const auto plane = [&](int b) { return lo + (hi - lo) * b / kSpatialBins; };
-            const auto slab = [&](double x) { return std::clamp(int((x - lo) * scale), 0, kSpatialBins - 1); };
-            // In double: rounding each part's box outward to float cost more than the rest of the
-            // binning.
-            std::array<Bounds3, kSpatialBins> boxes;
-            std::array<uint32_t, kSpatialBins> entering{}, leaving{};
-            for (uint32_t i = begin; i < end; ++i) {
-                const BuildPrim& p = prims_[i];
-                const Bounds3 box = p.box.to_bounds();
-                const int first = slab(box.lo[a]), last = slab(box.hi[a]);
-                ++entering[first];
-                ++leaving[last];
-                if (first == last) {
-                    boxes[first].extend(box);
-                    continue;
-                }
-                // Estimated: the triangle's part in each slab, cut down to the reference's box.
-                const Triangle& triangle = splits_->triangles[p.index];
-                for (int b = first; b <= last; ++b) boxes[b].extend(overlap(triangle.slab_bounds(a, plane(b), plane(b + 1)), box));
-            }
-            std::array<double, kSpatialBins> right_cost{};
-            Bounds3 acc;
-            uint32_t n = 0;
-            for (int b = kSpatialBins - 1; b > 0; --b) {
-                acc.extend(boxes[b]);
-                n += leaving[b];
-                right_cost[b] = n > 0 ? acc.half_area() * n : kInfinity;
-            }
-            acc = {};
-            n = 0;
-            for (int b = 0; b + 1 < kSpatialBins; ++b) {
-                acc.extend(boxes[b]);
-                n += entering[b];
-                const auto cost = static_cast<float>(acc.half_area() * n + right_cost[b + 1]);
-                if (n > 0 && cost < best.cost) best = {a, plane(b + 1), cost};
-            }
-        }
-        return best;
     }
 
     void make_leaf(uint32_t node, uint32_t begin, uint32_t count) {
@@ -392,8 +332,9 @@ private:
     // The primitives fill the bins of all three axes and note their bins; the cost is the
     // unnormalised SAH sum. Block by block, the bins are found first and filled after: neighbours
     // often share a bin, and filling a bin whose address came out of the long chain of the
-    // binning arithmetic kept the processor from running ahead to the next primitive's update
-    // (32 against one loop: Sponza's build 7% faster, the bunny's 6%).
+    // binning arithmetic keeps the processor from running ahead to the next primitive's update.
+    // kBinningBlock primitives a block: enough to run ahead on, few enough that the second loop
+    // finds them still in the cache.
     Split best_sah_split(uint32_t begin, uint32_t end, const Binning& binning) {
         // Only the bins in use are set up: clearing all of them cost more than binning small nodes.
         Bins bins;
@@ -488,29 +429,31 @@ private:
     }
 
     std::vector<BuildPrim> prims_;
-    const SpatialSplits* splits_;
+    const ReferenceSplitter* splitter_;
     const float traversal_cost_;  // of one step down, relative to one primitive test
     float root_area_ = 0;
-    std::vector<BuildPrim> left_, right_;  // a spatial split's children, before they are stored
+    std::vector<BuildPrim> left_, right_;  // a split by a plane: its children, before they are stored
+    std::vector<Bounds3> boxes_;           // and the node's references, for the splitter
+    std::vector<uint32_t> prim_ids_;
     std::vector<BinaryNode>* nodes_ = nullptr;
 };
 
 }  // namespace
 
-BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const SpatialSplits* splits) {
+BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter) {
     std::vector<BuildPrim> prims;
     prims.reserve(prim_bounds.size());
     for (uint32_t i = 0; i < prim_bounds.size(); ++i) {
         if (prim_bounds[i].empty()) continue;
-        // Field by field: built whole, the primitive went through the stack, where loading its
-        // index and bins as one 16-byte word waited for their narrower stores (perf: a quarter
-        // of this function's time).
+        // Field by field: built whole, the primitive goes through the stack, where loading its
+        // index and bins as one 16-byte word waits for their narrower stores (a failed store
+        // forwarding, in the loop over every primitive).
         BuildPrim& p = prims.emplace_back();
         p.box = SseBox::enclosing(prim_bounds[i]);
         p.index = i;
     }
     if (prims.empty()) return {};
-    return Builder(std::move(prims), splits).run();
+    return Builder(std::move(prims), splitter).run();
 }
 
 }  // namespace glint

@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "base/bounds.h"
-#include "shapes/triangle.h"
 
 namespace glint {
 
@@ -31,17 +30,35 @@ struct BinaryTree {
     std::vector<uint32_t> order;    // build order: position -> primitive, the tree's primitives only
 };
 
-// Spatial splits (Stich, Friedrich and Dietrich, "Spatial splits in bounding volume hierarchies",
-// HPG 2009): a node may also be split by a plane that cuts its triangles, each cut one becoming a
-// reference on both sides with the box of its part there, where that lowers the SAH cost. Long
-// or oblique triangles then stop filling their boxes' overlapping neighbours. The tree's order
-// may name a triangle several times.
-struct SpatialSplits {
-    std::span<const Triangle> triangles;  // primitive i is triangles[i]
-    double budget = 0.3;                  // at most this many references more per primitive
+// An axis plane: the axis and the coordinate there.
+struct SplitPlane {
+    int axis = -1;
+    double position = 0;
 };
 
-// Primitives with empty boxes are left out. `splits`, if given, allows spatial splits.
-BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const SpatialSplits* splits = nullptr);
+// A second way to split a node, which a caller may give the builder: by an axis plane that cuts
+// the references it crosses, each cut one becoming a reference on both sides with the box of
+// its part there. The tree's order may then name a primitive several times. The builder leaves
+// free slots for the references this adds, asks for a plane only where the children of the
+// best split by centres overlap by more than overlap_share() of the root's half area, and takes
+// the plane where it costs less. (The benchmarks' spatial splits are one: bench/spatial_splits.h.)
+class ReferenceSplitter {
+public:
+    virtual ~ReferenceSplitter() = default;
+    // One step down, relative to one primitive test, in the tree built with this splitter.
+    virtual float traversal_cost() const = 0;
+    // At most this many references more per primitive.
+    virtual double budget() const = 0;
+    virtual float overlap_share() const = 0;
+    // The cheapest plane through a node of box `node` holding the references `boxes` (of the
+    // primitives `prims`), and its unnormalised SAH cost (infinite if there is none).
+    virtual float best_plane(std::span<const Bounds3> boxes, std::span<const uint32_t> prims, const Bounds3& node,
+                             SplitPlane& plane) const = 0;
+    // A box around the part of primitive `prim` inside `box` (empty if none).
+    virtual Bounds3 part(uint32_t prim, const Bounds3& box) const = 0;
+};
+
+// Primitives with empty boxes are left out. `splitter`, if given, may also split by planes.
+BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter = nullptr);
 
 }  // namespace glint

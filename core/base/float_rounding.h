@@ -52,10 +52,9 @@ inline __m128 to_float_up(__m256d v) {
 }
 // to_float_up in one instruction: AVX-512's conversion with its rounding direction embedded
 // ({ru-sae}: towards +inf, no exception flags). The traversal rounds each hit's distance so, on
-// the way to the next box test: about 2% faster than the AVX rounding on an Intel Xeon (family 6,
-// model 207; bench/BENCHMARKS.md, fifteenth round). Written in assembly, as the intrinsic would need
-// the avx512f target on every function this is inlined through; %{ %} escape the braces, which
-// GCC reads as dialect alternatives. Only code that runs on AVX-512 may call it.
+// the way to the next box test, one instruction where the AVX rounding takes several. Written in
+// assembly, as the intrinsic would need the avx512f target on every function this is inlined
+// through; %{ %} escape the braces, which GCC reads as dialect alternatives. Only code that runs on AVX-512 may call it.
 inline float to_float_up_avx512(double v) {
     float f;
     asm("vcvtsd2ss %{ru-sae%}, %1, %1, %0" : "=v"(f) : "v"(v));

@@ -10,8 +10,8 @@ namespace glint {
 // cos 2πu and sin 2πu for u in [0, 1), the angle every sampler here turns, without libm: the
 // octant comes from 8u exactly, the angle within it (at most π/4, mirrored in odd octants) goes
 // through Taylor series to the 17th and 18th powers, whose first omitted terms are below 1e-19.
-// About a third of libm's sincos in instructions (bench/BENCHMARKS.md), and the same bits on
-// every machine. Accurate to a few units in the last place (tests/test_sampling.cpp).
+// Fewer instructions than libm's sincos, and the same bits on every machine, which libm does
+// not promise. Accurate to a few units in the last place (tests/test_sampling.cpp).
 struct CosSin {
     double cos, sin;
 };

@@ -46,8 +46,8 @@ inline uint32_t sobol_dimension1(uint32_t i) {
 // one point. Adding the key's low word first makes each point exactly uniform over keys (the
 // rest are bijections). The multipliers are glint's own (SplitMix64 outputs; the even ones
 // xor-shift, the odd one from the key permutes). About 20 instructions, against 32 hashes
-// for a scramble that draws every bit's flip afresh; which flips it draws is less random, and
-// what that costs is measured in bench/BENCHMARKS.md.
+// for a scramble that draws every bit's flip afresh; the price is flips that are less random
+// (bench/run_sampler_comparison.sh measures the error it costs).
 inline uint32_t owen_scramble(uint32_t x, uint64_t key) {
     constexpr uint32_t m1 = uint32_t(mix64(1)) & ~1u, m2 = uint32_t(mix64(2)) & ~1u, m3 = uint32_t(mix64(3)) & ~1u;
     uint32_t v = reverse_bits(x);

@@ -1,5 +1,7 @@
 #include "io/fingerprint.h"
 
+#include "render/strategies.h"
+
 namespace glint {
 
 uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
@@ -12,7 +14,7 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
     h.value(in.max_depth);
     h.value(in.rr_depth);
     h.value(in.direct_view_rays);
-    h.value(scene.light_tracing());
+    h.value(Strategies(scene).light_tracing());
     const Geometry& g = scene.geometry();
     h.value(g.accelerator());  // the accelerators may break exact ties between equal hits differently
     for (uint32_t prim = 0; prim < g.primitive_count(); ++prim) {

@@ -4,10 +4,10 @@
 
 namespace glint {
 
-CasterSampler::CasterSampler(const Geometry& geometry, const std::vector<Material>& materials,
-                             const std::vector<uint32_t>& material_of_prim) {
+CasterSampler::CasterSampler(const Scene& scene) {
+    const Geometry& geometry = scene.geometry();
     for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim)
-        if (geometry.is_sphere(prim) && materials[material_of_prim[prim]].type != MaterialType::diffuse)
+        if (geometry.is_sphere(prim) && scene.material(prim).type != MaterialType::diffuse)
             casters_.push_back({geometry.sphere(prim).centre, geometry.sphere(prim).radius});
 }
 

@@ -9,8 +9,7 @@
 
 #include <vector>
 
-#include "scene/geometry.h"
-#include "scene/material.h"
+#include "scene/scene.h"
 
 namespace glint {
 
@@ -18,8 +17,7 @@ class CasterSampler {
 public:
     CasterSampler() = default;
     // The scene's mirror and glass spheres.
-    CasterSampler(const Geometry& geometry, const std::vector<Material>& materials,
-                  const std::vector<uint32_t>& material_of_prim);
+    explicit CasterSampler(const Scene& scene);
 
     bool empty() const { return casters_.empty(); }
     // A direction from p into the cone of one of the casters p is outside of, chosen uniformly;

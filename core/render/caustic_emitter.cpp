@@ -11,14 +11,14 @@ bool is_specular(const Material& m) { return m.type != MaterialType::diffuse; }
 
 }  // namespace
 
-SphereCap CausticEmitter::cap_for(const Sphere& light, const Sphere& target, const Geometry& geometry,
-                                  const std::vector<Material>& materials, const std::vector<uint32_t>& material_of_prim,
-                                  uint32_t light_prim, uint32_t target_prim) {
+SphereCap CausticEmitter::cap_for(const Scene& scene, uint32_t light_prim, uint32_t target_prim) {
+    const Geometry& geometry = scene.geometry();
+    const Sphere &light = geometry.sphere(light_prim), &target = geometry.sphere(target_prim);
     const double dist = length(target.centre - light.centre);
     // Horizon: x sees some point of the target only if w·axis > (r - r_target) / dist.
     SphereCap best{(target.centre - light.centre) / dist, std::min(2.0, 1 - (light.radius - target.radius) / dist)};
     for (uint32_t prim = 0; prim < geometry.sphere_count(); ++prim) {
-        if (prim == light_prim || prim == target_prim || materials[material_of_prim[prim]].type == MaterialType::glass)
+        if (prim == light_prim || prim == target_prim || scene.material(prim).type == MaterialType::glass)
             continue;
         const Sphere& o = geometry.sphere(prim);
         const double target_dist = length(target.centre - o.centre);
@@ -30,21 +30,20 @@ SphereCap CausticEmitter::cap_for(const Sphere& light, const Sphere& target, con
     return best;
 }
 
-CausticEmitter::CausticEmitter(const Geometry& geometry, const std::vector<Material>& materials,
-                               const std::vector<uint32_t>& material_of_prim)
-    : geometry_(&geometry) {
+CausticEmitter::CausticEmitter(const Scene& scene) : geometry_(&scene.geometry()) {
+    const Geometry& geometry = scene.geometry();
     std::vector<double> flux;
     for (uint32_t light = 0; light < geometry.sphere_count(); ++light) {
-        const Material& lm = materials[material_of_prim[light]];
+        const Material& lm = scene.material(light);
         if (!lm.is_emissive()) continue;
         const Sphere& ls = geometry.sphere(light);
         for (uint32_t target = 0; target < geometry.sphere_count(); ++target) {
-            const Material& tm = materials[material_of_prim[target]];
+            const Material& tm = scene.material(target);
             if (!is_specular(tm) || tm.is_emissive()) continue;
             const Sphere& ts = geometry.sphere(target);
             const double dist = length(ts.centre - ls.centre);
             if (!(dist > ls.radius + ts.radius)) continue;  // overlapping: leave to the path tracer
-            const SphereCap cap = cap_for(ls, ts, geometry, materials, material_of_prim, light, target);
+            const SphereCap cap = cap_for(scene, light, target);
             if (!(cap.one_minus_cos > 0)) continue;
             pairs_.push_back({light, target, cap, lm.emission});
             // Roughly the flux the target intercepts: radiance × cap area × the target's solid angle.

@@ -14,8 +14,7 @@
 
 #include <vector>
 
-#include "scene/geometry.h"
-#include "scene/material.h"
+#include "scene/scene.h"
 #include "shapes/sphere_cap.h"
 
 namespace glint {
@@ -30,8 +29,7 @@ struct EmittedRay {
 class CausticEmitter {
 public:
     CausticEmitter() = default;
-    CausticEmitter(const Geometry& geometry, const std::vector<Material>& materials,
-                   const std::vector<uint32_t>& material_of_prim);
+    explicit CausticEmitter(const Scene& scene);
 
     bool empty() const { return pairs_.empty(); }
     size_t pairs() const { return pairs_.size(); }
@@ -51,9 +49,7 @@ private:
         SphereCap cap;
         Rgb emission;
     };
-    static SphereCap cap_for(const Sphere& light, const Sphere& target, const Geometry& geometry,
-                       const std::vector<Material>& materials, const std::vector<uint32_t>& material_of_prim,
-                       uint32_t light_prim, uint32_t target_prim);
+    static SphereCap cap_for(const Scene& scene, uint32_t light_prim, uint32_t target_prim);
     const Pair* find(uint32_t light, uint32_t target) const;
     // Density of emitting from x along d, summed over the pairs of `light` (`chosen`, if any,
     // is counted without testing).

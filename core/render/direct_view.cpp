@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "base/rng.h"
+#include "render/sampler.h"
 
 namespace glint {
 
@@ -30,7 +30,7 @@ DirectViewSplit::DirectViewSplit(const Scene& scene, const Camera& camera, Filte
 }
 
 Rgb DirectViewSplit::probe(const PathTracer& tracer, const Camera& camera, double fx, double fy, uint64_t key) {
-    Rng rng(0, key, 0);  // for a lens and deep glass: fixed, not the job's seed
+    Rng rng = probe_stream(key);  // for a lens and deep glass: fixed, not the job's seed
     const double lens1 = rng.uniform(), lens2 = rng.uniform();
     return tracer.radiance(camera.generate(fx, fy, lens1, lens2), rng, kNoLightPath, nullptr, DirectView::alone);
 }

@@ -1,9 +1,9 @@
 // Splitting off the direct view (integrator.h's DirectView: what the camera sees through
 // specular vertices only) in the pixels where it varies: the light's edge, its outline in a
-// mirror or through glass. On smallpt's box at 16 spp the 4 of 192 blocks of 16×16 pixels on
-// the light's edge held 34% of the squared error (bench/BENCHMARKS.md), because a pixel the
-// light half covers gets 0 or 12 from each sample. There each sample estimates the direct view from `rays` extra camera rays,
-// which end at their first diffuse vertex, and the sample's own path leaves it out; elsewhere
+// mirror or through glass. There a few pixels hold much of the image's squared error, because a
+// pixel the light half covers gets 0 or the light's radiance (12 in smallpt's box) from each
+// sample. There each sample estimates the direct view from `rays` extra camera rays, which end
+// at their first diffuse vertex, and the sample's own path leaves it out; elsewhere
 // the path gathers it as usual. Either way the pixel's estimate is unbiased, so which pixels
 // split only decides where the extra rays are spent.
 //

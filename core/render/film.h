@@ -26,9 +26,8 @@ namespace glint {
 
 // Aligned to cache lines: a pixel then spans two lines, not three, and the first holds the
 // camera's sums, which only the thread rendering the pixel's tile writes, while the light
-// tracer's splats, from any thread, go to the second. Unaligned, two threads' writes met on
-// shared lines: 2 threads rendered the Cornell box 7% slower (bench/BENCHMARKS.md, eighteenth
-// round).
+// tracer's splats, from any thread, go to the second. Unaligned, two threads' writes would meet
+// on shared lines (false sharing); the sums fill the two lines, so alignment costs no memory.
 struct alignas(64) PixelSums {
     Rgb sum{0};                // of the samples of the rounds kept
     Rgb half_sum{0};           // of the samples of the rounds kept from the sampler's first replicate

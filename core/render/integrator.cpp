@@ -1,6 +1,7 @@
 #include "render/integrator.h"
 
 #include "base/sampling.h"
+#include "render/mis.h"
 
 #include <utility>
 
@@ -25,12 +26,6 @@ bool hidden_by_own_sphere(const Geometry& geometry, const LightVertex& y, const 
     const Sphere& s = geometry.sphere(y.si.prim);
     const Vec3 from_centre = x - s.centre;
     return dot(from_centre, from_centre) > s.radius * s.radius;
-}
-
-// The two ends' densities of a connection x → y, cos_x·cos_y / (π·|x - y|²) / π: the density
-// with which cosine sampling at x reaches y, over π.
-double connection_density_over_pi(double cos_x, double cos_y, double distance2) {
-    return std::fabs(cos_x * cos_y) / (kPi * kPi * distance2);
 }
 
 // Russian roulette on a contribution before its shadow ray (PathTracer::kShadowRoulette).
@@ -74,7 +69,7 @@ Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Materi
     const double density_over_pi = connection_density_over_pi(cos_x, cos_y, distance2);
     // f_x · G · f_y = albedo_x · albedo_y · cos_x·cos_y / (π²·distance²).
     Rgb value = beta * m.albedo * y.albedo * y.beta *
-                (density_over_pi * LightTracer::light_side_weight(density_over_pi, y.emitted_ratio));
+                (density_over_pi * light_side_weight(density_over_pi, y.emitted_ratio));
     if (!survives_roulette(value, kShadowRoulette, rng)) return Rgb{0};
     const Vec3 from = offset_ray_origin(x, w), to = offset_ray_origin(y.si, -w);
     Ray shadow{from, normalize(to - from)};
@@ -88,7 +83,7 @@ Rgb PathTracer::through_caster(const SurfaceInteraction& x, const Vec3& d, const
     const double u_pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     Vec3 wi;
     double pdf, bsdf_pdf;
-    if (!scene_.casters().sample(x.p, u_pick, u1, u2, wi, pdf)) return Rgb{0};
+    if (!strategies_.casters().sample(x.p, u_pick, u1, u2, wi, pdf)) return Rgb{0};
     const Rgb f_cos = diffuse_f_cos(m, d, x.n, wi, bsdf_pdf);
     if (is_black(f_cos)) return Rgb{0};
     Rgb throughput = beta * f_cos * (power_heuristic(pdf, bsdf_pdf) / pdf);
@@ -114,13 +109,13 @@ Rgb PathTracer::through_caster(const SurfaceInteraction& x, const Vec3& d, const
 double PathTracer::bounce_weight(double density_over_pi, const Ray& ray, const SurfaceInteraction& si,
                                  uint32_t last_specular) const {
     if (!(density_over_pi > 0)) return 1;
-    const CausticEmitter& emitter = scene_.caustic_emitter();
+    const CausticEmitter& emitter = strategies_.caustic_emitter();
     const Vec3 d_out = -ray.d;
     const double cos_out = dot(d_out, si.n);
     if (!(cos_out > 0) || !emitter.covers(si.prim, si.p, last_specular)) return 1;
     const double pdf = emitter.pdf(si.prim, si.p, d_out);
     if (!(pdf > 0)) return 1;
-    return 1 - LightTracer::light_side_weight(density_over_pi, cos_out / pdf);
+    return 1 - light_side_weight(density_over_pi, cos_out / pdf);
 }
 
 Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light, const FirstVertexSamples* first,
@@ -142,7 +137,7 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, bool
         path.throughput *= 1 / survive;
     }
     if (diffuse) {
-        path.caster_pdf = path.chain == 0 && !scene_.casters().empty() ? scene_.casters().pdf(si.p, bs.wi) : 0;
+        path.caster_pdf = path.chain == 0 && !strategies_.casters().empty() ? strategies_.casters().pdf(si.p, bs.wi) : 0;
         path.caster_bsdf_pdf = bs.pdf;
         path.caster_bounces = 0;
     } else {
@@ -161,10 +156,44 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, bool
     return true;
 }
 
+double PathTracer::found_light_weight(const PathState& path, const SurfaceInteraction& si, bool nee) const {
+    if (nee && !path.specular)
+        return power_heuristic(path.bsdf_pdf, scene_.lights().pdf(path.previous, path.self, si, path.previous_facing));
+    if (strategies_.light_tracing() && path.specular && path.chain > 0 && path.chain <= kLightVertices)
+        return bounce_weight(path.chain_density, path.ray, si, path.self);
+    if (path.caster_pdf > 0 && path.caster_bounces >= 1 && path.caster_bounces <= kMaxCasterBounces)
+        return power_heuristic(path.caster_bsdf_pdf, path.caster_pdf);
+    return 1;
+}
+
+void PathTracer::gather_at_diffuse(PathState& path, const SurfaceInteraction& si, const Material& m,
+                                   const FirstVertexSamples* first, const LightPath& light, bool nee, Rng& rng,
+                                   Rgb& result) const {
+    const Ray& ray = path.ray;
+    const int max_depth = scene_.integrator().max_depth;
+    if (nee) {
+        const double u1 = first ? first->light[0] : rng.uniform(), u2 = first ? first->light[1] : rng.uniform();
+        result += direct_light(si, ray.d, m, path.throughput, u1, u2, rng);
+    }
+    for (int i = 0; i < light.size; ++i)
+        if (path.depth + 1 + light.vertices[i].hits <= max_depth)
+            result += connect(si, ray.d, m, path.throughput, light.vertices[i], rng);
+    if (!strategies_.light_tracing()) return;
+    if (path.depth == 0) {
+        path.chain_density = camera_.area_density(si.p, si.n) / kPi;
+    } else if (path.previous_diffuse) {
+        const Vec3 from_previous = si.p - path.previous;
+        path.chain_density = connection_density_over_pi(dot(ray.d, path.previous_facing), dot(ray.d, si.n),
+                                                        dot(from_previous, from_previous));
+    }
+    path.chain = path.depth == 0 || path.previous_diffuse ? 1 : path.chain > 0 ? path.chain + 1 : 0;
+    if (path.chain == 0 && !strategies_.casters().empty())
+        result += through_caster(si, ray.d, m, path.throughput, rng);
+}
+
 Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
     const IntegratorSettings& settings = scene_.integrator();
     const bool nee = settings.light_sampling && !scene_.lights().empty();
-    const bool light_tracing = scene_.light_tracing();
     Rgb result{0};
     for (;;) {
         const Ray& ray = path.ray;
@@ -180,43 +209,14 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
             break;
         }
         const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
-        const bool traced_from_light = light_tracing && path.shape == PathShape::caustic &&
-                                       scene_.caustic_emitter().covers(hit.prim, si.p, path.self);
-        if (m.is_emissive() && !traced_from_light && path.counts_found_light()) {
-            // Emission found by BSDF sampling; where NEE or a light path could also have
-            // found it, MIS-weight it.
-            double w = 1;
-            if (nee && !path.specular)
-                w = power_heuristic(path.bsdf_pdf, scene_.lights().pdf(path.previous, path.self, si, path.previous_facing));
-            else if (light_tracing && path.specular && path.chain > 0 && path.chain <= kLightVertices)
-                w = bounce_weight(path.chain_density, ray, si, path.self);
-            else if (path.caster_pdf > 0 && path.caster_bounces >= 1 && path.caster_bounces <= kMaxCasterBounces)
-                w = power_heuristic(path.caster_bsdf_pdf, path.caster_pdf);
-            result += path.throughput * m.emission * w;
-        }
+        // Caustic paths that light tracing covers are its alone (mis.h).
+        const bool traced_from_light = strategies_.light_tracing() && path.shape == PathShape::caustic &&
+                                       strategies_.caustic_emitter().covers(hit.prim, si.p, path.self);
+        if (m.is_emissive() && !traced_from_light && path.counts_found_light())
+            result += path.throughput * m.emission * found_light_weight(path, si, nee);
         if (path.depth + 1 >= settings.max_depth) break;
         const FirstVertexSamples* first = diffuse ? std::exchange(path.first, nullptr) : nullptr;
-        if (diffuse && nee) {
-            const double u1 = first ? first->light[0] : rng.uniform(), u2 = first ? first->light[1] : rng.uniform();
-            result += direct_light(si, ray.d, m, path.throughput, u1, u2, rng);
-        }
-        if (diffuse) {
-            for (int i = 0; i < light.size; ++i)
-                if (path.depth + 1 + light.vertices[i].hits <= settings.max_depth)
-                    result += connect(si, ray.d, m, path.throughput, light.vertices[i], rng);
-            if (light_tracing) {
-                if (path.depth == 0) {
-                    path.chain_density = camera_.area_density(si.p, si.n) / kPi;
-                } else if (path.previous_diffuse) {
-                    const Vec3 from_previous = si.p - path.previous;
-                    path.chain_density = connection_density_over_pi(dot(ray.d, path.previous_facing), dot(ray.d, si.n),
-                                                                    dot(from_previous, from_previous));
-                }
-                path.chain = path.depth == 0 || path.previous_diffuse ? 1 : path.chain > 0 ? path.chain + 1 : 0;
-                if (path.chain == 0 && !scene_.casters().empty())
-                    result += through_caster(si, ray.d, m, path.throughput, rng);
-            }
-        }
+        if (diffuse) gather_at_diffuse(path, si, m, first, light, nee, rng, result);
         BsdfSample bs, reflected;
         if (m.type == MaterialType::glass && path.depth < kSplitDepth && split_glass(m, ray.d, si.n, reflected, bs)) {
             PathState branch = path;  // with the same stratified numbers for its first diffuse vertex

@@ -2,18 +2,18 @@
 // diffuse surfaces combined with BSDF sampling by the power heuristic, smallpt's mirror and
 // glass, Russian roulette on the path throughput and a hard depth cap.
 //
-// When the scene has light tracing (light_tracer.h), its strategies share the work:
-// - the caustic paths it splats from its first diffuse vertex y (camera → y → specular+ →
-//   light) are left to it;
-// - each diffuse vertex x is connected to the light path's diffuse vertices, and the paths
-//   that both a connection (or a splat of z) and the path tracer's own bounces can find are
-//   weighted between the two by the power heuristic.
+// The tracer owns the strategies its estimator combines (strategies.h): with light tracing
+// (light_tracer.h), each diffuse vertex x is connected to the light path's diffuse vertices and
+// the caustic paths it splats are left to it; where light tracing cannot reach, mirror and
+// glass spheres are sampled as lights. Which strategy counts which path, and why the weights
+// make an unbiased estimate, is mis.h's; found_light_weight() is where a bounce's share is taken.
 #pragma once
 
 #include "scene/camera.h"
 #include "render/light_tracer.h"
 #include "base/rng.h"
 #include "render/sampler.h"
+#include "render/strategies.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -32,7 +32,9 @@ enum class PathShape { camera, diffuse, caustic, other };  // caustic: one diffu
 
 class PathTracer {
 public:
-    PathTracer(const Scene& scene, const Camera& camera) : scene_(scene), camera_(camera) {}
+    PathTracer(const Scene& scene, const Camera& camera) : scene_(scene), camera_(camera), strategies_(scene) {}
+
+    const Strategies& strategies() const { return strategies_; }
 
     // Radiance arriving along the camera ray, estimated with random numbers from rng; `light`
     // is this sample's light path (empty when the scene has no light tracing); `first`, if
@@ -73,7 +75,8 @@ private:
     };
     // Glass met in the first kSplitDepth bounces is split: both the reflection and the
     // refraction are followed, each weighted by its Fresnel factor, where smallpt's random pick
-    // makes the light's images in a glass ball speckle (see bench/BENCHMARKS.md).
+    // makes the light's images in a glass ball speckle. Each level doubles the paths a camera
+    // ray may branch into: 2 keeps them at four.
     static constexpr int kSplitDepth = 2;
     Rgb trace(PathState path, Rng& rng, const LightPath& light) const;
     // Moves the path on from si along bs (false: it ends there, by Russian roulette or a black
@@ -82,7 +85,8 @@ private:
     // Both next strategies end in a shadow ray, and most of their contributions are small: one
     // worth less than kShadowRoulette (a tenth of white on the display) is tested only with
     // probability worth / kShadowRoulette and then counted 1/probability times, which keeps the
-    // mean. On smallpt's box this cut 16% of the instructions for 1% more variance.
+    // mean. It trades a little variance for the shadow rays it saves: a higher threshold saves
+    // more and adds more.
     static constexpr double kShadowRoulette = 0.1;
     // Light arriving from one sampled light point at si (reached along d with throughput beta),
     // times f·cos, MIS-weighted against BSDF sampling.
@@ -90,7 +94,7 @@ private:
     Rgb direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, const Rgb& beta, double u1,
                      double u2, Rng& rng) const;
     // Light reaching diffuse vertex x (reached along d with throughput beta) through a mirror
-    // or glass sphere picked by the scene's CasterSampler, times f·cos, MIS-weighted against
+    // or glass sphere picked by the CasterSampler, times f·cos, MIS-weighted against
     // the bounce: the chain of specular vertices is followed as the path tracer would (Fresnel
     // picks at random), for at most kMaxCasterBounces vertices.
     Rgb through_caster(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta, Rng& rng) const;
@@ -104,9 +108,20 @@ private:
     // path's first diffuse vertex (0: no light path could).
     double bounce_weight(double density_over_pi, const Ray& ray, const SurfaceInteraction& si,
                          uint32_t last_specular) const;
+    // The share of emission at si that the path's last bounce found, against whichever other
+    // strategy could also have found it (mis.h): next-event estimation, a light path or the
+    // CasterSampler; 1 where none could.
+    double found_light_weight(const PathState& path, const SurfaceInteraction& si, bool nee) const;
+    // What diffuse vertex si gathers, added to `result` in turn: next-event estimation (with
+    // `first`'s numbers, if given), the connections to the light path's vertices and the light
+    // through casters; also notes where the path stands in a light path's chain.
+    void gather_at_diffuse(PathState& path, const SurfaceInteraction& si, const Material& m,
+                           const FirstVertexSamples* first, const LightPath& light, bool nee, Rng& rng,
+                           Rgb& result) const;
 
     const Scene& scene_;
     const Camera& camera_;
+    Strategies strategies_;
 };
 
 }  // namespace glint

@@ -1,5 +1,7 @@
 #include "render/light_tracer.h"
 
+#include "render/mis.h"
+
 namespace glint {
 
 void LightTracer::splat(const LightVertex& v, double w) const {
@@ -37,7 +39,7 @@ bool LightTracer::to_diffuse(Ray ray, uint32_t self, uint32_t light, Rgb& throug
         const Material& m = scene_.material(hit.prim);
         const bool diffuse = m.type == MaterialType::diffuse;
         // Other first surfaces are the path tracer's paths (or a connection's).
-        if (first && (diffuse || (light != kNoPrimitive && !scene_.caustic_emitter().is_target(light, hit.prim))))
+        if (first && (diffuse || (light != kNoPrimitive && !strategies_.caustic_emitter().is_target(light, hit.prim))))
             return false;
         si = scene_.geometry().interaction(ray, hit);
         d_in = ray.d;
@@ -63,7 +65,7 @@ LightPath LightTracer::trace(Rng& rng) const {
                  u4 = rng.uniform();
     LightPath path;
     EmittedRay e;
-    if (!scene_.caustic_emitter().sample(u_pick, u1, u2, u3, u4, e)) return path;
+    if (!strategies_.caustic_emitter().sample(u_pick, u1, u2, u3, u4, e)) return path;
     Rgb throughput{1};
     int hits = 1;  // the light is the path's first surface hit; the path tracer caps them at max_depth
     uint32_t self = e.light;

@@ -5,31 +5,31 @@
 // specular vertices only (a bounce that meets a diffuse surface ends the path: paths through
 // two diffuse vertices in a row are the connections' and the path tracer's). Its strategies:
 // - y is connected to the eye and splatted onto the film with the pixel filter's weight. That
-//   estimates exactly the paths the path tracer leaves out (camera → y → specular+ → light, see
-//   PathTracer), so the two add up to the image without double counting and without bias.
+//   estimates exactly the paths the path tracer leaves out (camera → y → specular+ → light), so
+//   the two add up to the image without double counting and without bias (mis.h).
 // - every later vertex is splatted the same way, weighted by the power heuristic against the
 //   path tracer, which also finds camera → z → specular+ → y → specular+ → light when all its
 //   bounces are lucky;
 // - the vertices are handed back as a LightPath, to whose vertices the path tracer connects each
 //   diffuse vertex x of the camera path (bidirectional path tracing's connection strategy,
 //   restricted to these light paths), again weighted against the path tracer's own bounces.
-// On smallpt's box, before these connections, such paths carried 82% of the variance, most of
-// it through specular-diffuse-specular chains (the balls seen from the walls lit through the
-// balls). Continuing from y diffusely to any surface (caustics seen after more diffuse bounces)
-// cost as much as the camera paths and gained less than it cost: connections reach those
-// paths from the camera side.
+// Without the connections, such paths carry most of the variance of smallpt's box, through
+// specular-diffuse-specular chains (the balls seen from the walls lit through the balls), which
+// the path tracer alone finds only by chance. Light paths stop at the first diffuse bounce
+// that meets a diffuse surface: going on to any surface (caustics seen after more diffuse
+// bounces) would cost as much as the camera paths, and connections reach those paths from the
+// camera side.
 //
 // A path x → v → (specular+ → diffuse)* → specular+ → light has exactly two strategies: the
 // path tracer's bounces, and the light path's vertex v met from x (a connection) or from the
-// eye (a splat). With cosine sampling at every diffuse vertex, their densities differ only at
-// the two ends, whatever lies between: the light side's emission density against the density
-// with which x (or the eye) reaches v.
+// eye (a splat); light_side_weight() (mis.h) weighs them.
 #pragma once
 
 #include "scene/camera.h"
 #include "render/film.h"
 #include "render/filter.h"
 #include "base/rng.h"
+#include "render/strategies.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -55,20 +55,13 @@ inline const LightPath kNoLightPath{};
 
 class LightTracer {
 public:
-    LightTracer(const Scene& scene, const Camera& camera, Filter filter, Film& film)
-        : scene_(scene), camera_(camera), filter_(filter), film_(film) {}
+    // `strategies`: the path tracer's, whose CausticEmitter starts the light paths.
+    LightTracer(const Scene& scene, const Strategies& strategies, const Camera& camera, Filter filter, Film& film)
+        : scene_(scene), strategies_(strategies), camera_(camera), filter_(filter), film_(film) {}
 
     // One light path: its connections to the eye go to the film as splats; its diffuse
     // vertices are returned for the camera path to connect to. Thread-safe.
     LightPath trace(Rng& rng) const;
-
-    // The power heuristic's weight, against the path tracer, of a path whose first diffuse vertex
-    // from the light side is reached from the camera side with area density `density` (divided
-    // by π, the cosine sampling's density at that vertex) — the same ratio on both sides.
-    static double light_side_weight(double density_over_pi, double emitted_ratio) {
-        const double r = density_over_pi * emitted_ratio;
-        return 1 / (1 + r * r);
-    }
 
 private:
     // Follows `ray` from primitive `self` through specular vertices to the first diffuse
@@ -80,6 +73,7 @@ private:
     void splat(const LightVertex& v, double w) const;
 
     const Scene& scene_;
+    const Strategies& strategies_;
     const Camera& camera_;
     Filter filter_;
     Film& film_;

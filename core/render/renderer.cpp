@@ -25,7 +25,7 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
       camera_(scene_->camera(), settings.width, settings.height),
       tracer_(*scene_, camera_),
       film_(settings.width, settings.height),
-      light_tracer_(*scene_, camera_, settings.filter, film_),
+      light_tracer_(*scene_, tracer_.strategies(), camera_, settings.filter, film_),
       direct_view_(*scene_, camera_, settings.filter, settings.width, settings.height, scene_->integrator().direct_view_rays),
       tiles_x_((settings.width + kTileSize - 1) / kTileSize),
       tiles_y_((settings.height + kTileSize - 1) / kTileSize) {
@@ -46,7 +46,7 @@ Ray RenderJob::camera_ray(int x, int y, uint32_t index, const double* film, Rng&
 
 Rgb RenderJob::sample(int x, int y, uint32_t index) const {
     const uint64_t pixel = uint64_t(y) * settings_.width + x;
-    Rng rng(settings_.seed, pixel, index);
+    Rng rng = camera_stream(settings_.seed, pixel, index);
     // The stratified sampler's numbers (sampler.h); the independent sampler draws them all from
     // the sample's stream, as smallpt does.
     const bool sobol = settings_.sampler == Sampler::sobol;
@@ -54,10 +54,10 @@ Rgb RenderJob::sample(int x, int y, uint32_t index) const {
     const StratifiedSample stratified = sobol ? sampler.sample(index) : StratifiedSample{};
     const Ray ray = camera_ray(x, y, index, sobol ? stratified.film : nullptr, rng);
     const FirstVertexSamples* first = sobol ? &stratified.first : nullptr;
-    // One light path per camera sample, on its own stream keyed like the sample's; initialised
-    // from trace()'s result in place, where assigning it copied its four vertices (~560 bytes).
-    const LightPath light = scene_->light_tracing() ? [&] {
-        Rng light_rng(settings_.seed, pixel, uint64_t(index) | (uint64_t(1) << 63));
+    // One light path per camera sample, on its own stream; initialised from trace()'s result in
+    // place, where assigning it copied its four vertices (~560 bytes).
+    const LightPath light = tracer_.strategies().light_tracing() ? [&] {
+        Rng light_rng = light_path_stream(settings_.seed, pixel, index);
         return light_tracer_.trace(light_rng);
     }() : LightPath{};
     if (!direct_view_.splits(x, y)) return tracer_.radiance(ray, rng, light, first);

@@ -45,9 +45,43 @@
 
 #include <cstdint>
 
+#include "base/rng.h"
 #include "base/sobol.h"
 
 namespace glint {
+
+// The keys that set a render's random numbers apart, all in one place so that no two streams
+// coincide. Each value is part of every image: changing one changes the pixels (and calls for a
+// new kSamplerVersion).
+namespace sample_keys {
+// XORed into the seed before the pixel's stratified dimensions are keyed from it, so that their
+// scrambles are not functions of the random streams' keys, which start from mix64(seed).
+inline constexpr uint64_t kStratified = 0xF11Du;
+// XORed into a dimension's key for the permutation of its sample order, keying the order apart
+// from the scramble of its points.
+inline constexpr uint64_t kShuffle = 0x5EEDu;
+// A pixel's stratified sequences: a replicate's sequence for subpixel s is stream
+// replicate << kReplicateShift | s; the one shared by all its subpixels is
+// replicate << kReplicateShift | kWholePixel (subpixels number fewer than kWholePixel).
+inline constexpr uint32_t kReplicateShift = 8;
+inline constexpr uint32_t kWholePixel = 0xFF;
+// Set in the sample index of a camera sample's light path (light_tracer.h): an index is 32 bits,
+// so its stream is never a camera sample's.
+inline constexpr uint64_t kLightPath = uint64_t(1) << 63;
+// The direct view's probes (direct_view.h) take seed 0, not the job's: which pixels split must
+// not depend on the seed, so that the parts of a job rendered apart decide alike.
+inline constexpr uint64_t kProbeSeed = 0;
+}  // namespace sample_keys
+
+// The random stream of sample `index` of pixel `pixel`: everything a camera path does not take
+// from the stratified dimensions, and all of it with the independent sampler.
+inline Rng camera_stream(uint64_t seed, uint64_t pixel, uint32_t index) { return Rng(seed, pixel, index); }
+// The stream of that sample's light path.
+inline Rng light_path_stream(uint64_t seed, uint64_t pixel, uint32_t index) {
+    return Rng(seed, pixel, uint64_t(index) | sample_keys::kLightPath);
+}
+// The stream of the direct view's probe number `probe` on the job's probe grid.
+inline Rng probe_stream(uint64_t probe) { return Rng(sample_keys::kProbeSeed, probe, 0); }
 
 // sobol: the shuffled, scrambled Sobol' dimensions above. independent: every number
 // from the sample's own random stream, as smallpt draws them (for comparing with smallpt's
@@ -82,7 +116,7 @@ public:
     // `round`: the samples that cover the pixel's subpixels once (samples_per_round of the filter);
     // sample i goes to subpixel i mod round.
     PixelSampler(uint64_t seed, uint64_t pixel, uint32_t round)
-        : key_(mix64(mix64(seed ^ 0xF11Du) ^ pixel)), round_(round) {}
+        : key_(mix64(mix64(seed ^ sample_keys::kStratified) ^ pixel)), round_(round) {}
 
     // The film position is stratified over its subpixel's samples (a sequence per subpixel); the
     // first vertex's numbers over all the pixel's samples (the light seen from one subpixel's
@@ -104,8 +138,8 @@ public:
     }
 
 private:
+    // The stratified dimensions, each a key of its own (shifted into the key's top byte).
     enum class Dimension : uint64_t { film = 1, light = 2, bounce = 3, direct_view = 4 };
-    static constexpr uint64_t kShuffle = 0x5EEDu;  // keys the order apart from the scramble
 
     // Where sample `index` lies: its subpixel, its round within its replicate, and the streams
     // of its replicate that cover the subpixel and the whole pixel.
@@ -114,13 +148,14 @@ private:
     };
     Position position(uint32_t index) const {
         const uint32_t subpixel = index % round_, replicate = first_replicate(index, round_) ? 0 : 1;
-        return {subpixel, index / round_ / 2, replicate << 8 | subpixel, replicate << 8 | 0xFF};
+        const uint32_t streams = replicate << sample_keys::kReplicateShift;
+        return {subpixel, index / round_ / 2, streams | subpixel, streams | sample_keys::kWholePixel};
     }
 
     // Point `index` of dimension `dimension`'s sequence number `stream`, in the dimension's order.
     void point(Dimension dimension, uint32_t stream, uint32_t index, double u[2]) const {
         const uint64_t key = mix64(key_ ^ (uint64_t(dimension) << 56) ^ stream);
-        sobol_2d(owen_scramble(index, mix64(key ^ kShuffle)), key, u[0], u[1]);
+        sobol_2d(owen_scramble(index, mix64(key ^ sample_keys::kShuffle)), key, u[0], u[1]);
     }
 
     uint64_t key_;

@@ -19,7 +19,7 @@ void Geometry::set_isa(Isa isa) {
 }
 
 Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles, Accelerator accelerator,
-                   BvhBuild build)
+                   const ReferenceSplitter* splitter)
     : spheres_(std::move(spheres)), accelerator_(accelerator) {
     std::vector<PackedTriangle> packed;
     std::vector<Bounds3> triangle_bounds;
@@ -46,14 +46,7 @@ Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& tri
     sphere_bounds.reserve(spheres_.size());
     for (const Sphere& s : spheres_) sphere_bounds.push_back(s.bounds());
     sphere_bvh_ = Bvh::build(sphere_bounds);
-
-    std::vector<Triangle> unpacked;
-    if (build == BvhBuild::spatial_splits) {
-        unpacked.reserve(packed.size());
-        for (const PackedTriangle& p : packed) unpacked.push_back(p.unpack());
-    }
-    const SpatialSplits splits{unpacked};
-    triangle_bvh_ = Bvh::build(triangle_bounds, build == BvhBuild::spatial_splits ? &splits : nullptr);
+    triangle_bvh_ = Bvh::build(triangle_bounds, splitter);
     triangle_at_ = triangle_bvh_.order();
     position_of_.resize(packed.size());
     for (uint32_t pos = 0; pos < triangle_at_.size(); ++pos) position_of_[triangle_at_[pos]] = pos;
@@ -70,8 +63,8 @@ void Geometry::store_runs(const std::vector<PackedTriangle>& packed, const std::
         for (uint32_t i = 0; i < count; ++i) run_slot_[first + i] = static_cast<uint8_t>(count << 4 | i);
     });
     triangle_runs_.assign(9 * positions + triangle_run::kPadding, 0.0f);
-    // In build order, the triangles' reads jump about: each is prefetched a few positions ahead
-    // (the bunny's whole binned build about 4% faster).
+    // In build order, the triangles' reads jump about: each is prefetched a few positions ahead,
+    // a hint that costs an instruction against a cache miss on every large mesh.
     constexpr uint32_t kAhead = 16;
     for (uint32_t pos = 0; pos < positions; ++pos) {
         if (!triangle_at.empty() && pos + kAhead < positions) __builtin_prefetch(&packed[triangle_at[pos + kAhead]]);
@@ -102,8 +95,8 @@ uint32_t Geometry::leave_out_key(uint32_t prim) const { return split_triangles_ 
 
 // Where each triangle has one position, by table on the position: 0 from four lanes on
 // (kNoPrimitive and positions before `first` included). With split triangles, by comparing the
-// run's four triangle indices, which cost the binned tree 1-4% (bench/BENCHMARKS.md, eighth
-// round), so only there. A lane past the end of a shorter run names no triangle of it, and the
+// run's four triangle indices, a load and a compare more per leaf than the table, so only
+// there. A lane past the end of a shorter run names no triangle of it, and the
 // run test looks only at the run's own lanes.
 inline unsigned Geometry::lanes_of(uint32_t key, uint32_t first) const {
     if (!split_triangles_) {

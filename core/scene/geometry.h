@@ -12,19 +12,15 @@
 namespace glint {
 
 // `list` tests every primitive (smallpt's way); `automatic` picks it for scenes so small that a
-// tree costs more than it saves (smallpt's 9 spheres render 1.35-1.5x faster without one, see
-// bench/BENCHMARKS.md), else the BVH.
+// tree costs more than it saves (up to kListMaxPrimitives: testing them all is cheaper than a
+// traversal's set-up and its node visits), else the BVH.
 enum class Accelerator { automatic, bvh, list };
 inline constexpr uint32_t kListMaxPrimitives = 16;
 
-// How the triangles' tree is built: binned SAH alone, or with spatial splits besides (see
-// sah_builder.h), which builds slower and traces faster where long or oblique triangles overlap.
-enum class BvhBuild { binned, spatial_splits };
-
 // The instruction set the triangle queries run in. Both paths compute 256-bit vectors and
 // answer bit for bit alike; AVX-512VL's EVEX encoding gives them 32 vector registers instead of
-// AVX2's 16, room for more of the box test's ray constants (GCC still loads some from the stack;
-// bench/BENCHMARKS.md, fourth round).
+// AVX2's 16, room for more of the box test's ray constants (GCC still loads some from the
+// stack).
 enum class Isa { avx2, avx512 };
 // The widest this processor and its operating system support, found once per process.
 Isa best_isa();
@@ -45,8 +41,10 @@ struct Hit {
 class Geometry {
 public:
     Geometry() = default;
+    // `splitter`, if given, may also split the triangles' tree by planes that cut triangles
+    // (sah_builder.h); its primitive i is triangle i as stored (float vertices).
     Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles,
-             Accelerator accelerator = Accelerator::automatic, BvhBuild build = BvhBuild::binned);
+             Accelerator accelerator = Accelerator::automatic, const ReferenceSplitter* splitter = nullptr);
 
     size_t sphere_count() const { return spheres_.size(); }
     size_t triangle_count() const { return triangle_count_; }
@@ -118,7 +116,7 @@ private:
     Isa isa_ = best_isa();
     Bvh sphere_bvh_, triangle_bvh_;
     size_t triangle_count_ = 0;
-    bool split_triangles_ = false;  // some triangle lies in several leaves (BvhBuild::spatial_splits)
+    bool split_triangles_ = false;  // some triangle lies in several leaves (built with a splitter)
     size_t degenerate_ = 0;
 };
 

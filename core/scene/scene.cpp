@@ -10,12 +10,6 @@ Scene::Scene(CameraSettings camera, Rgb background, IntegratorSettings integrato
       geometry_(std::move(spheres), std::move(triangles), integrator.accelerator),
       materials_(std::move(materials)),
       material_of_prim_(std::move(material_of_prim)),
-      lights_(geometry_, materials_, material_of_prim_) {
-    // Light tracing connects to a pinhole only; "on" with a lens is rejected by the loader.
-    const bool pinhole = !(camera_.aperture > 0);
-    if (integrator_.light_tracing != LightTracing::off && pinhole)
-        caustic_emitter_ = CausticEmitter(geometry_, materials_, material_of_prim_);
-    if (!caustic_emitter_.empty()) casters_ = CasterSampler(geometry_, materials_, material_of_prim_);
-}
+      lights_(geometry_, materials_, material_of_prim_) {}
 
 }  // namespace glint

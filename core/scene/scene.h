@@ -5,8 +5,6 @@
 #include <vector>
 
 #include "scene/camera.h"
-#include "render/caster_sampler.h"
-#include "render/caustic_emitter.h"
 #include "scene/geometry.h"
 #include "scene/lights.h"
 #include "scene/material.h"
@@ -42,12 +40,6 @@ public:
     const IntegratorSettings& integrator() const { return integrator_; }
     const Geometry& geometry() const { return geometry_; }
     const LightSet& lights() const { return lights_; }
-    // Whether light tracing takes the caustic paths, and where its paths start (empty if not).
-    bool light_tracing() const { return !caustic_emitter_.empty(); }
-    const CausticEmitter& caustic_emitter() const { return caustic_emitter_; }
-    // With light tracing: the mirror and glass spheres, sampled from the diffuse points the
-    // camera sees only through specular vertices (where light tracing cannot reach).
-    const CasterSampler& casters() const { return casters_; }
     const Material& material(uint32_t prim) const { return materials_[material_of_prim_[prim]]; }
 
 private:
@@ -58,8 +50,6 @@ private:
     std::vector<Material> materials_;
     std::vector<uint32_t> material_of_prim_;
     LightSet lights_;
-    CausticEmitter caustic_emitter_;
-    CasterSampler casters_;
 };
 
 }  // namespace glint

@@ -37,7 +37,7 @@ inline void edge_functions(const T a[2], const T b[2], const T c[2], T& u, T& v,
 // ray: the axis that becomes z, the shear that turns the direction onto it, and the origin in
 // the permuted axes. The shear and the origin are kept as four-lane rows (lane 3 unused), which
 // RunTest broadcasts from: a ray's set-up is a sizeable share of a short traversal's
-// instructions (bench/BENCHMARKS.md, fourteenth round).
+// instructions, so it is paid once per ray rather than once per triangle run.
 struct RayShear {
     int kx, ky, kz;
     alignas(32) double shear[4];   // sx, sy, sz: d[kx] / d[kz], d[ky] / d[kz], 1 / d[kz]
@@ -158,14 +158,6 @@ struct Triangle {
     }
 
     SurfaceInteraction interaction(const TriangleHit& hit, uint32_t prim) const;
-    // A box around the part of the triangle inside `box` (empty if none), for spatial splits:
-    // never smaller than that part, and at most a few float units wider.
-    Bounds3 clipped_bounds(const Bounds3& box) const;
-    // A box around the part of the triangle in the slab lower <= x[axis] <= upper: the vertices
-    // inside it and the points where the edges cross its planes. Cheaper than clipped_bounds
-    // (no polygon), and exact but for the crossings' rounding, which may leave a part a few
-    // units in the last place outside it: for estimates, such as the spatial splits' costs.
-    Bounds3 slab_bounds(int axis, double lower, double upper) const;
 };
 
 // A triangle as the scene stores it: single-precision vertices (what OBJ files hold), 36 bytes
@@ -321,9 +313,9 @@ private:
         return static_cast<unsigned>(_mm256_movemask_pd(ok)) & l.inside;
     }
 
-    // The scalar tests of the lanes in `lanes`, in order. Out of line: rays meet an edge function
-    // of exactly zero rarely, and inlined, its shear values were hoisted out of the traversal
-    // loop and spilled there, twenty instructions a ray (bench/BENCHMARKS.md, fourteenth round).
+    // The scalar tests of the lanes in `lanes`, in order. Out of line and cold: rays meet an edge
+    // function of exactly zero rarely, and inlined, the compiler hoists its shear values out of
+    // the traversal loop, where they take registers the hot path needs and spill.
     [[gnu::noinline, gnu::cold]] int scalar_closest(const float* run, uint32_t n, unsigned lanes, const Ray& ray, TriangleHit& hit) const {
         Ray r = ray;
         int best = -1;

@@ -11,61 +11,22 @@
 #include "scene/geometry.h"
 #include "base/rng.h"
 #include "base/sampling.h"
+#include "support/geometry_fixtures.h"
 
 namespace glint {
 namespace {
 
-struct Scene {
-    std::vector<Sphere> spheres;
-    std::vector<Triangle> triangles;
-};
-
-Scene random_scene(uint64_t seed, int spheres, int triangles) {
-    Rng rng(seed, 0, 0);
-    auto point = [&] { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 20 - Vec3{10}; };
-    Scene s;
-    for (int i = 0; i < spheres; ++i) s.spheres.push_back({point(), 0.05 + rng.uniform()});
-    for (int i = 0; i < triangles; ++i) {
-        const Vec3 a = point();
-        s.triangles.push_back({a, a + (point() * 0.1), a + (point() * 0.1)});
-    }
-    return s;
-}
-
-// A grid of unit squares in the z = 0 plane, two triangles each: its node boxes share planes.
-std::vector<Triangle> grid(int n) {
-    std::vector<Triangle> out;
-    for (int i = 0; i < n; ++i)
-        for (int j = 0; j < n; ++j) {
-            const Vec3 a{double(i), double(j), 0}, b{i + 1.0, double(j), 0}, c{i + 1.0, j + 1.0, 0}, d{double(i), j + 1.0, 0};
-            out.push_back({a, b, c});
-            out.push_back({a, c, d});
-        }
-    return out;
-}
-
-void expect_same_answers(const Geometry& bvh, const Geometry& list, const Ray& ray) {
-    Hit a, b;
-    const bool hit_a = bvh.intersect(ray, kNoPrimitive, a), hit_b = list.intersect(ray, kNoPrimitive, b);
-    ASSERT_EQ(hit_a, hit_b);
-    EXPECT_EQ(bvh.occluded(ray, kNoPrimitive), hit_b);
-    if (!hit_a) return;
-    EXPECT_EQ(a.t, b.t);  // bit for bit: the same primitive test decides
-    if (a.prim == b.prim) return;
-    // A ray through a shared edge or vertex meets several primitives at the same t; either
-    // answer is right, but it must be a true tie.
-    Hit tie;
-    Ray only_b = ray;
-    only_b.tmax = b.t;
-    ASSERT_FALSE(bvh.is_sphere(a.prim));
-    ASSERT_TRUE(bvh.triangle(a.prim).intersect(only_b, tie.triangle));
-    EXPECT_EQ(tie.triangle.t, b.t);
-}
+using testing::expect_same_answers;
+using testing::grid;
+using testing::least_wide_cost;
+using testing::wide_cost;
+using testing::random_scene;
+using testing::RandomScene;
 
 // Every third ray has tmin = -inf, and so takes the traversal with the slab box test (the
 // others take the fused one): it must find hits behind the origin too.
 TEST(Bvh, MatchesBruteForceOnRandomRays) {
-    const Scene s = random_scene(11, 200, 3000);
+    const RandomScene s = random_scene(11, 200, 3000);
     const Geometry bvh(s.spheres, s.triangles, Accelerator::bvh), list(s.spheres, s.triangles, Accelerator::list);
     Rng rng(12, 0, 0);
     for (int i = 0; i < 20000; ++i) {
@@ -100,7 +61,7 @@ TEST(Bvh, AxisParallelRaysWithSignedZerosOnNodePlanes) {
 // of a grid. Elsewhere the tests run whichever path best_isa() picks; this one also runs AVX2.
 TEST(Bvh, Avx512PathAnswersBitForBitAsAvx2) {
     if (best_isa() != Isa::avx512) GTEST_SKIP() << "this processor has no AVX-512VL";
-    Scene s = random_scene(18, 0, 3000);
+    RandomScene s = random_scene(18, 0, 3000);
     for (const Triangle& t : grid(16)) s.triangles.push_back(t);
     auto bits = [](double x) { return std::bit_cast<uint64_t>(x); };
     for (Accelerator accelerator : {Accelerator::bvh, Accelerator::list}) {
@@ -288,7 +249,7 @@ TEST(Bvh, EmbeddedRoundingMatchesScalar) {
 }
 
 TEST(Bvh, NanRaysTerminateWithoutAHit) {
-    const Scene s = random_scene(14, 50, 500);
+    const RandomScene s = random_scene(14, 50, 500);
     const Geometry bvh(s.spheres, s.triangles);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     Hit hit;
@@ -312,7 +273,7 @@ TEST(Bvh, FiniteOriginAndDirectionLooksAtEachCoordinate) {
 }
 
 TEST(Bvh, TreeIsWellFormed) {
-    const Scene s = random_scene(15, 100, 5000);
+    const RandomScene s = random_scene(15, 100, 5000);
     const Geometry g(s.spheres, s.triangles);
     for (const Bvh* bvh : {&g.sphere_bvh(), &g.triangle_bvh()}) {
         // Every position of the tree lies in exactly one leaf, every node but the root has one
@@ -352,7 +313,7 @@ TEST(Bvh, TreeIsWellFormed) {
 // The any-hit traversal takes children in slot order, so the builder stores the likeliest
 // blockers first: the used slots lead, leaves before inner nodes, each group by falling area.
 TEST(Bvh, ChildrenAreStoredLeavesFirstThenLargestFirst) {
-    const Scene s = random_scene(16, 0, 5000);
+    const RandomScene s = random_scene(16, 0, 5000);
     const Geometry g(s.spheres, s.triangles);
     int mixed = 0;  // nodes holding both leaves and inner nodes
     for (const BvhNode& n : g.triangle_bvh().nodes()) {
@@ -411,46 +372,16 @@ TEST(Bvh, CollapseMakesTheNodesOfLeastArea) {
     EXPECT_EQ(inner_children, 1);
 }
 
-// The collapse's SAH cost is the least there is: the wide tree of a random scene, built with and
-// without spatial splits, costs what a plain scalar dynamic programme over the same binary tree
-// finds (every k, every slot count, in double), so the collapse's vector shortcuts lose nothing.
-double least_wide_cost(const std::vector<BinaryNode>& binary) {
-    std::vector<std::array<double, kBvhWidth + 1>> cost(binary.size());  // cost[n][slots], 1..W
-    std::vector<uint32_t> prims(binary.size());
-    const auto split = [&](uint32_t n, int slots) {
-        double best = kInfinity;
-        for (int k = 1; k < slots; ++k) best = std::min(best, cost[binary[n].first][k] + cost[binary[n].first + 1][slots - k]);
-        return best;
-    };
-    for (size_t n = binary.size(); n-- > 0;) {
-        const double area = binary[n].half_area(), leaf = double(kLeafCost) * area;
-        if (binary[n].is_leaf()) {
-            prims[n] = binary[n].count;
-            cost[n].fill(leaf);
-            continue;
-        }
-        prims[n] = prims[binary[n].first] + prims[binary[n].first + 1];
-        const double node = area + split(uint32_t(n), kBvhWidth);
-        cost[n][1] = prims[n] <= BinaryTree::kMaxLeafSize ? std::min(leaf, node) : node;
-        for (int slots = 2; slots <= kBvhWidth; ++slots) cost[n][slots] = std::min(cost[n][slots - 1], split(uint32_t(n), slots));
-    }
-    return binary[0].half_area() + split(0, kBvhWidth);
-}
-
+// The collapse's SAH cost is the least there is: the wide tree of a random scene costs what a
+// plain scalar dynamic programme over the same binary tree finds (every k, every slot count, in
+// double), so the collapse's vector shortcuts lose nothing. (bench/spatial_splits_check.cpp
+// checks the same of the tree with spatial splits.)
 TEST(Bvh, CollapseFindsTheLeastCost) {
-    const Scene s = random_scene(19, 0, 4000);
+    const RandomScene s = random_scene(19, 0, 4000);
     std::vector<Bounds3> bounds;
     for (const Triangle& t : s.triangles) bounds.push_back(t.bounds());
-    const SpatialSplits splits{s.triangles};
-    for (const SpatialSplits* with : {static_cast<const SpatialSplits*>(nullptr), &splits}) {
-        const BinaryTree tree = build_sah_tree(bounds, with);
-        const std::vector<BvhNode> nodes = collapse_to_wide(tree.nodes);
-        double cost = tree.nodes[0].half_area();
-        for (const BvhNode& n : nodes)
-            for (int slot = 0; slot < kBvhWidth; ++slot)
-                if (n.used(slot)) cost += (ChildRef::count(n.child[slot]) > 0 ? double(kLeafCost) : 1.0) * n.half_area(slot);
-        EXPECT_NEAR(cost, least_wide_cost(tree.nodes), 1e-5 * cost) << (with ? "split" : "binned");
-    }
+    const BinaryTree tree = build_sah_tree(bounds);
+    EXPECT_NEAR(wide_cost(tree), least_wide_cost(tree.nodes), 1e-5 * wide_cost(tree));
 }
 
 // Binary leaves become one leaf where that costs less. Under the root (half area 10), C (4)
@@ -469,61 +400,6 @@ TEST(Bvh, CollapseMergesLeavesWhereThatCostsLess) {
     EXPECT_EQ(root.child[1], ChildRef::leaf(2, 1));
     EXPECT_EQ(root.child[2], ChildRef::leaf(3, 1));
     for (int slot = 3; slot < kBvhWidth; ++slot) EXPECT_FALSE(root.used(slot));
-}
-
-// Long triangles across the scene, in every orientation, among small ones: spatial splits cut
-// them into several leaves, and the tree must still answer as testing every triangle does,
-// also for rays leaving a triangle (which no copy of it may stop) and shadow rays to one.
-TEST(Bvh, SpatialSplitsAnswerAsBruteForce) {
-    Scene s = random_scene(17, 0, 3000);
-    Rng rng(18, 0, 0);
-    auto point = [&] { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 20 - Vec3{10}; };
-    for (int i = 0; i < 300; ++i) s.triangles.push_back({point(), point(), point()});
-    const Geometry split({}, s.triangles, Accelerator::bvh, BvhBuild::spatial_splits), list({}, s.triangles, Accelerator::list);
-    const Bvh& bvh = split.triangle_bvh();
-    ASSERT_GT(bvh.tree_size(), s.triangles.size() + 300) << "the long triangles should be split";
-    // Every position lies in one leaf, and every triangle is in the tree.
-    std::vector<int> seen(bvh.tree_size(), 0);
-    bvh.for_each_leaf([&](uint32_t first, uint32_t count) {
-        for (uint32_t k = first; k < first + count; ++k) ++seen[k];
-    });
-    for (int count : seen) EXPECT_EQ(count, 1);
-    std::vector<uint32_t> order(bvh.order());
-    std::sort(order.begin(), order.end());
-    order.erase(std::unique(order.begin(), order.end()), order.end());
-    EXPECT_EQ(order.size(), s.triangles.size());
-
-    for (int i = 0; i < 20000; ++i) {
-        const Vec3 o = Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 30 - Vec3{15};
-        expect_same_answers(split, list, Ray{o, sample_uniform_sphere(rng.uniform(), rng.uniform()), i % 3 == 0 ? -kInfinity : 0.0});
-    }
-    for (int i = 0; i < 5000; ++i) {
-        // From a point on one of the long triangles, with that triangle as `self`.
-        const auto self = static_cast<uint32_t>(3000 + rng.uniform() * 300);
-        const Triangle& t = s.triangles[self];
-        const double u = rng.uniform(), v = rng.uniform() * (1 - u);
-        const Ray ray{t.v0 * (1 - u - v) + t.v1 * u + t.v2 * v, sample_uniform_sphere(rng.uniform(), rng.uniform())};
-        Hit a, b;
-        ASSERT_EQ(split.intersect(ray, self, a), list.intersect(ray, self, b));
-        EXPECT_NE(a.prim, self);
-        EXPECT_EQ(a.t, b.t);
-        const auto target = static_cast<uint32_t>(rng.uniform() * 3300);
-        EXPECT_EQ(split.occluded(ray, self, target), list.occluded(ray, self, target));
-    }
-}
-
-TEST(Bvh, SpatialSplitsKeepAxisParallelRaysOnSharedEdges) {
-    std::vector<Triangle> triangles = grid(32);
-    triangles.push_back({{0, 0, 0.5}, {32, 32, 0.5}, {0, 32.5, 0.25}});  // a long one above, to split
-    const Geometry bvh({}, triangles, Accelerator::bvh, BvhBuild::spatial_splits), list({}, triangles, Accelerator::list);
-    Rng rng(19, 0, 0);
-    for (int i = 0; i < 3000; ++i) {
-        const Vec3 o{std::floor(rng.uniform() * 33), std::floor(rng.uniform() * 33), rng.uniform() < 0.5 ? 1.0 : -1.0};
-        for (double zero : {0.0, -0.0}) {
-            expect_same_answers(bvh, list, Ray{o, {zero, zero, -o.z}});
-            expect_same_answers(bvh, list, Ray{o, normalize(Vec3{1, zero, -o.z})});
-        }
-    }
 }
 
 TEST(Bvh, CoincidentPrimitivesStillBuildAShallowTree) {
@@ -560,7 +436,7 @@ namespace glint {
 namespace {
 
 TEST(Bvh, AutomaticChoiceBuildsATreeOnlyForScenesLargerThanSixteenPrimitives) {
-    const Scene small = random_scene(16, 16, 0), large = random_scene(16, 9, 8);
+    const RandomScene small = random_scene(16, 16, 0), large = random_scene(16, 9, 8);
     EXPECT_EQ(Geometry(small.spheres, small.triangles).accelerator(), Accelerator::list);
     EXPECT_TRUE(Geometry(small.spheres, small.triangles).sphere_bvh().nodes().empty());
     EXPECT_EQ(Geometry(large.spheres, large.triangles).accelerator(), Accelerator::bvh);

@@ -1,10 +1,14 @@
 // The integrator against answers known in closed form, and against itself with and without
 // light sampling (which must converge to the same image: smallpt's).
+// Also the densities of its strategies (strategies.h) against their own samples.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
 #include "base/files.h"
+#include "base/sampling.h"
+#include "io/scene_loader.h"
+#include "render/strategies.h"
 #include "support/test_support.h"
 
 namespace glint {
@@ -98,7 +102,7 @@ TEST(Integrator, LightTracedCausticsMatchPlainPathTracing) {
     // A glass and a mirror ball under a small sphere light: the caustics come from light
     // tracing (splats through the tent filter) in one image and from the path tracer in the other.
     nlohmann::json caustic = nlohmann::json::parse(read_file(GLINT_SCENES_DIR "/caustic.json", 1 << 20));
-    ASSERT_TRUE(scene_from(caustic.dump()).scene->light_tracing());
+    ASSERT_TRUE(Strategies(*scene_from(caustic.dump()).scene).light_tracing());
     caustic["film"] = {{"width", 24}, {"height", 18}, {"spp", 1024}};
     expect_same_image(caustic, 6);
 }
@@ -118,7 +122,7 @@ TEST(Integrator, LightTracedMirrorCausticInAnUmbraMatchesPlainPathTracing) {
           {"type": "sphere", "center": [-12, 14, 0], "radius": 3, "material": {"albedo": 0}, "emission": 20}
         ]})");
     const auto traced = render(scene_from(scene.dump()));
-    ASSERT_TRUE(scene_from(scene.dump()).scene->light_tracing());
+    ASSERT_TRUE(Strategies(*scene_from(scene.dump()).scene).light_tracing());
     scene["integrator"] = {{"light_sampling", false}, {"light_tracing", "off"}};
     scene["film"]["spp"] = 131072;  // plain path tracing finds the caustic rarely
     const auto plain = render(scene_from(scene.dump()));
@@ -147,12 +151,12 @@ TEST(Integrator, CausticsSeenInAMirrorMatchPlainPathTracing) {
           {"type": "sphere", "center": [9, 10, 0], "radius": 4, "material": {"type": "mirror", "albedo": 0.9}},
           {"type": "sphere", "center": [-12, 14, 0], "radius": 3, "material": {"albedo": 0}, "emission": 20}
         ]})");
-    ASSERT_FALSE(scene_from(scene.dump()).scene->casters().empty());
+    ASSERT_FALSE(Strategies(*scene_from(scene.dump()).scene).casters().empty());
     const auto sampled = render(scene_from(scene.dump()));
     scene["integrator"] = {{"light_sampling", false}, {"light_tracing", "off"}};
     scene["film"]["spp"] = 65536;
     const auto plain = render(scene_from(scene.dump()));
-    ASSERT_TRUE(scene_from(scene.dump()).scene->casters().empty());
+    ASSERT_TRUE(Strategies(*scene_from(scene.dump()).scene).casters().empty());
     for (int c = 0; c < 3; ++c) {
         const auto a = pooled(sampled->film(), c), b = pooled(plain->film(), c);
         EXPECT_NEAR(a.mean, b.mean, 4 * std::hypot(a.sigma, b.sigma)) << "channel " << c;
@@ -214,6 +218,59 @@ TEST(Integrator, DegenerateGeometryIsIgnoredAndNeverMakesNaN) {
     const Image image = job->film().mean();
     for (float v : image.rgb) ASSERT_TRUE(std::isfinite(v));
     EXPECT_NEAR(pooled(job->film(), 0, 0, 0, 2, 2).mean, 0.5, 1e-12);  // a corner sees only the background
+}
+
+TEST(Strategies, CausticEmitterPdfAgreesWithItsSamples) {
+    // The path tracer weighs its bounces against light paths by the emitter's density of the
+    // light point and direction it reached; the light paths carry cos / that density from
+    // sampling. The two must agree for the weights to sum to one.
+    const LoadedScene loaded = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    const Strategies strategies(*loaded.scene);
+    const CausticEmitter& emitter = strategies.caustic_emitter();
+    ASSERT_FALSE(emitter.empty());
+    Rng rng(31, 0, 0);
+    int emitted = 0;
+    for (int i = 0; i < 20000; ++i) {
+        EmittedRay e;
+        if (!emitter.sample(rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), e)) continue;
+        ++emitted;
+        const Sphere& light = loaded.scene->geometry().sphere(e.light);
+        const double cos_out = dot(normalize(e.ray.o - light.centre), e.ray.d);
+        EXPECT_NEAR(emitter.pdf(e.light, e.ray.o, e.ray.d) * e.emitted_ratio, cos_out, 1e-9 * cos_out);
+        EXPECT_NEAR(e.weight.x, 12 * e.emitted_ratio, 1e-9 * e.weight.x);
+    }
+    EXPECT_GT(emitted, 19000);
+}
+
+TEST(Strategies, CasterSamplerDensityIntegratesToTheSolidAngleOfItsConesUnion) {
+    // Two overlapping cones and one the point is inside of (never picked): the mean of 1/pdf
+    // over sample() is the solid angle the union of the other two covers, which uniform
+    // directions measure independently. Miscounting the overlap or the choice among casters
+    // moves the mean by a third or more.
+    const LoadedScene loaded = parse_scene(R"({"objects": [
+        {"type": "sphere", "center": [0, 0, 3], "radius": 1, "material": {"type": "mirror"}},
+        {"type": "sphere", "center": [0.8, 0, 3.5], "radius": 1.2, "material": {"type": "glass"}},
+        {"type": "sphere", "center": [0, 0, 0], "radius": 0.5, "material": {"type": "glass"}},
+        {"type": "sphere", "center": [0, 9, 0], "radius": 1, "material": {"albedo": 0}, "emission": 5}]})", {});
+    const Strategies strategies(*loaded.scene);
+    const CasterSampler& casters = strategies.casters();
+    ASSERT_FALSE(casters.empty());
+    const Vec3 p{0, 0, 0.2};
+    Rng rng(7, 0, 0);
+    double sum = 0, union_hits = 0;
+    constexpr int kSamples = 200000;
+    for (int i = 0; i < kSamples; ++i) {
+        Vec3 wi;
+        double pdf;
+        ASSERT_TRUE(casters.sample(p, rng.uniform(), rng.uniform(), rng.uniform(), wi, pdf));
+        EXPECT_NEAR(casters.pdf(p, wi), pdf, 1e-12 * pdf);
+        sum += 1 / pdf;
+        const Vec3 u = sample_uniform_sphere(rng.uniform(), rng.uniform());
+        union_hits += casters.pdf(p, u) > 0;
+    }
+    const double by_pdf = sum / kSamples, uniform = 4 * kPi * union_hits / kSamples;
+    EXPECT_NEAR(by_pdf, uniform, 0.02 * uniform);
+    EXPECT_EQ(casters.pdf(Vec3{0, 0, 0.3}, Vec3{0, 0, -1}), 0);  // away from every cone
 }
 
 }  // namespace

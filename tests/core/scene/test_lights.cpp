@@ -2,7 +2,6 @@
 // the shading point, and sample/pdf consistency that MIS depends on.
 #include <gtest/gtest.h>
 
-#include "render/caustic_emitter.h"
 #include "scene/lights.h"
 #include "io/scene_loader.h"
 #include "base/sampling.h"
@@ -220,57 +219,6 @@ TEST(Lights, LightCutBySeveralWallsIsSampledOnTheCapEachPointSees) {
         EXPECT_NEAR(nee.estimate.mean, brute.mean, 4 * std::hypot(nee.estimate.sigma, brute.sigma))
             << c.p.x << " " << c.p.y << " " << c.p.z;
     }
-}
-
-TEST(Lights, CausticEmitterPdfAgreesWithItsSamples) {
-    // The path tracer weighs its bounces against light paths by the emitter's density of the
-    // light point and direction it reached; the light paths carry cos / that density from
-    // sampling. The two must agree for the weights to sum to one.
-    const LoadedScene loaded = load_scene(GLINT_SCENES_DIR "/cornell.json");
-    const CausticEmitter& emitter = loaded.scene->caustic_emitter();
-    ASSERT_FALSE(emitter.empty());
-    Rng rng(31, 0, 0);
-    int emitted = 0;
-    for (int i = 0; i < 20000; ++i) {
-        EmittedRay e;
-        if (!emitter.sample(rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), rng.uniform(), e)) continue;
-        ++emitted;
-        const Sphere& light = loaded.scene->geometry().sphere(e.light);
-        const double cos_out = dot(normalize(e.ray.o - light.centre), e.ray.d);
-        EXPECT_NEAR(emitter.pdf(e.light, e.ray.o, e.ray.d) * e.emitted_ratio, cos_out, 1e-9 * cos_out);
-        EXPECT_NEAR(e.weight.x, 12 * e.emitted_ratio, 1e-9 * e.weight.x);
-    }
-    EXPECT_GT(emitted, 19000);
-}
-
-TEST(Lights, CasterSamplerDensityIntegratesToTheSolidAngleOfItsConesUnion) {
-    // Two overlapping cones and one the point is inside of (never picked): the mean of 1/pdf
-    // over sample() is the solid angle the union of the other two covers, which uniform
-    // directions measure independently. Miscounting the overlap or the choice among casters
-    // moves the mean by a third or more.
-    const LoadedScene loaded = parse_scene(R"({"objects": [
-        {"type": "sphere", "center": [0, 0, 3], "radius": 1, "material": {"type": "mirror"}},
-        {"type": "sphere", "center": [0.8, 0, 3.5], "radius": 1.2, "material": {"type": "glass"}},
-        {"type": "sphere", "center": [0, 0, 0], "radius": 0.5, "material": {"type": "glass"}},
-        {"type": "sphere", "center": [0, 9, 0], "radius": 1, "material": {"albedo": 0}, "emission": 5}]})", {});
-    const CasterSampler& casters = loaded.scene->casters();
-    ASSERT_FALSE(casters.empty());
-    const Vec3 p{0, 0, 0.2};
-    Rng rng(7, 0, 0);
-    double sum = 0, union_hits = 0;
-    constexpr int kSamples = 200000;
-    for (int i = 0; i < kSamples; ++i) {
-        Vec3 wi;
-        double pdf;
-        ASSERT_TRUE(casters.sample(p, rng.uniform(), rng.uniform(), rng.uniform(), wi, pdf));
-        EXPECT_NEAR(casters.pdf(p, wi), pdf, 1e-12 * pdf);
-        sum += 1 / pdf;
-        const Vec3 u = sample_uniform_sphere(rng.uniform(), rng.uniform());
-        union_hits += casters.pdf(p, u) > 0;
-    }
-    const double by_pdf = sum / kSamples, uniform = 4 * kPi * union_hits / kSamples;
-    EXPECT_NEAR(by_pdf, uniform, 0.02 * uniform);
-    EXPECT_EQ(casters.pdf(Vec3{0, 0, 0.3}, Vec3{0, 0, -1}), 0);  // away from every cone
 }
 
 }  // namespace

@@ -109,65 +109,6 @@ TEST(Triangle, AxisParallelRaysWithSignedZerosHitCubeEdges) {
         }
 }
 
-// Spatial splits rely on it: every point of the triangle inside the box lies in the clipped
-// box, which lies in the box; a box the triangle misses gives an empty one or a sliver.
-TEST(Triangle, ClippedBoundsHoldThePartInsideTheBox) {
-    Rng rng(31, 0, 0);
-    auto point = [&](double scale) { return (Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 2 - Vec3{1}) * scale; };
-    int inside = 0;
-    for (int i = 0; i < 2000; ++i) {
-        // Far-off and huge triangles too: the padding must follow the vertices' magnitude.
-        const double scale = i % 4 == 0 ? 1e6 : 1;
-        const Triangle t{point(scale), point(scale), point(scale)};
-        const Vec3 c = point(0.5);
-        const Bounds3 box{c - Vec3{rng.uniform() * 0.5}, c + Vec3{rng.uniform() * 0.5}};
-        const Bounds3 part = t.clipped_bounds(box);
-        if (!part.empty())
-            for (int a = 0; a < 3; ++a) {
-                EXPECT_GE(part.lo[a], box.lo[a]);
-                EXPECT_LE(part.hi[a], box.hi[a]);
-            }
-        for (int k = 0; k < 200; ++k) {
-            const double u = rng.uniform(), v = rng.uniform() * (1 - u);
-            const Vec3 p = t.v0 * (1 - u - v) + t.v1 * u + t.v2 * v;
-            if (!(p.x >= box.lo.x && p.x <= box.hi.x && p.y >= box.lo.y && p.y <= box.hi.y && p.z >= box.lo.z && p.z <= box.hi.z))
-                continue;
-            ++inside;
-            ASSERT_FALSE(part.empty());
-            for (int a = 0; a < 3; ++a) {
-                EXPECT_GE(p[a], part.lo[a]);
-                EXPECT_LE(p[a], part.hi[a]);
-            }
-        }
-    }
-    EXPECT_GT(inside, 1000);  // the test saw many points inside
-}
-
-// The spatial splits' cost estimate: a slab's box is the clipped box of the slab (unbounded
-// across it) but for rounding, for slabs through the triangle, beside it and holding a vertex.
-TEST(Triangle, SlabBoundsAreTheClippedBoundsOfTheSlab) {
-    Rng rng(37, 0, 0);
-    auto point = [&]() { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 2 - Vec3{1}; };
-    int nonempty = 0;
-    for (int i = 0; i < 2000; ++i) {
-        const Triangle t{point(), point(), point()};
-        const int axis = i % 3;
-        const double lower = rng.uniform() * 2.2 - 1.1, upper = lower + rng.uniform() * 0.5;
-        Bounds3 slab{Vec3{-kInfinity}, Vec3{kInfinity}};
-        slab.lo[axis] = lower;
-        slab.hi[axis] = upper;
-        const Bounds3 exact = t.clipped_bounds(slab), estimate = t.slab_bounds(axis, lower, upper);
-        ASSERT_EQ(exact.empty(), estimate.empty()) << i;
-        if (exact.empty()) continue;
-        ++nonempty;
-        for (int a = 0; a < 3; ++a) {
-            EXPECT_NEAR(estimate.lo[a], exact.lo[a], 1e-12) << i;
-            EXPECT_NEAR(estimate.hi[a], exact.hi[a], 1e-12) << i;
-        }
-    }
-    EXPECT_GT(nonempty, 500);
-}
-
 TEST(Triangle, RejectsDegenerateAndCoplanarCases) {
     TriangleHit hit;
     const Triangle sliver{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};          // zero area, collinear
