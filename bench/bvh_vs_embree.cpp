@@ -132,79 +132,106 @@ Geometry split_geometry(const std::vector<Triangle>& triangles) {
     return Geometry({}, triangles, Accelerator::bvh, &splitter);
 }
 
-void bench_mesh(const std::string& shared, const std::string& name) {
-    const ObjMesh mesh = load_obj(shared + "/scenes/meshes/" + name + ".obj", size_t(1) << 30);
-    const std::vector<Triangle> triangles = to_triangles(mesh);
-    const size_t n_tris = triangles.size();
-    Geometry glint_bvh, split_bvh;
-    // Every build a fresh one (a single build also paid for set-up that later builds do not);
-    // Embree's timed around rtcCommitScene alone.
+// Build times and bytes per triangle of glint's two trees and Embree's two qualities: one row.
+// Every build a fresh one (a single build also paid for set-up that later builds do not);
+// Embree's timed around rtcCommitScene alone.
+void bench_builds(const std::string& name, const ObjMesh& mesh, const std::vector<Triangle>& triangles,
+                  Geometry& glint_bvh, Geometry& split_bvh, const Embree* embree[2]) {
     const Times builds = interleaved_times({
         [&] { return seconds([&] { glint_bvh = Geometry({}, triangles, Accelerator::bvh); }); },
         [&] { return seconds([&] { split_bvh = split_geometry(triangles); }); },
         [&] { double s; const Embree scene(mesh, RTC_BUILD_QUALITY_MEDIUM, s); return s; },
         [&] { double s; const Embree scene(mesh, RTC_BUILD_QUALITY_HIGH, s); return s; },
     });
-    double unused;
-    const Embree medium(mesh, RTC_BUILD_QUALITY_MEDIUM, unused);
-    const Embree high(mesh, RTC_BUILD_QUALITY_HIGH, unused);
+    const size_t n_tris = triangles.size();
     const auto per_triangle = [n_tris](size_t bytes) { return double(bytes) / double(n_tris); };
     const auto ms = [&](int e) { return median(builds[e]) * 1e3; };
     g_build_rows.push_back(format("| %s | %zu | %.1f / %.1f | %.1f / %.1f | %.2f / %.2f | %.1f / %.1f | %.1f / %.1f |", name.c_str(),
                                   n_tris, ms(0), ms(1), ms(2), ms(3), paired_ratio(builds[0], builds[2]), paired_ratio(builds[1], builds[3]), per_triangle(glint_bvh.memory_bytes()),
-                                  per_triangle(split_bvh.memory_bytes()), per_triangle(medium.bytes), per_triangle(high.bytes)));
-    ThreadPool check_pool(2);
+                                  per_triangle(split_bvh.memory_bytes()), per_triangle(embree[0]->bytes), per_triangle(embree[1]->bytes)));
+}
+
+// How many closest hits and occlusion answers of each glint tree differ from Embree MEDIUM's.
+struct Disagreements {
+    size_t closest[2] = {}, occluded[2] = {};
+};
+
+Disagreements check_answers(const std::vector<RayRecord>& rays, const Geometry* trees[2], const Embree& medium) {
+    const size_t n = rays.size();
+    std::vector<HitRecord> a(n), b(n);
+    std::vector<char> o(n);
+    Disagreements d;
+    ThreadPool pool(2);
+    for_rays(pool, n, [&](size_t i) { b[i] = medium.closest(rays[i]); o[i] = medium.occluded(rays[i]); });
+    for (int e = 0; e < 2; ++e) {
+        for_rays(pool, n, [&](size_t i) { a[i] = glint_closest(*trees[e], rays[i]); });
+        for (size_t i = 0; i < n; ++i) {
+            d.closest[e] += !agree(a[i], b[i]);
+            d.occluded[e] += trees[e]->occluded(to_ray(rays[i]), kNoPrimitive) != bool(o[i]);
+        }
+    }
+    return d;
+}
+
+// Each query on each engine (glint, glint split, MEDIUM, HIGH) with 1 and 2 threads, as seconds
+// a pass: t[8q + 4(threads - 1) + engine], q 0 for closest hit and 1 for any hit.
+Times time_queries(const std::vector<RayRecord>& rays, const Geometry* trees[2], const Embree* embree[2]) {
+    const size_t n = rays.size();
+    std::vector<HitRecord> hits(n);
+    std::vector<char> occluded(n);
+    ThreadPool one(1), two(2);
+    const auto pass = [&](ThreadPool& pool, const std::function<void(size_t)>& f) {
+        return [&pool, &f, n] { return seconds([&] { for_rays(pool, n, f); }); };
+    };
+    const std::function<void(size_t)> closest[4] = {
+        [&](size_t i) { hits[i] = glint_closest(*trees[0], rays[i]); }, [&](size_t i) { hits[i] = glint_closest(*trees[1], rays[i]); },
+        [&](size_t i) { hits[i] = embree[0]->closest(rays[i]); }, [&](size_t i) { hits[i] = embree[1]->closest(rays[i]); }};
+    const std::function<void(size_t)> any[4] = {
+        [&](size_t i) { occluded[i] = trees[0]->occluded(to_ray(rays[i]), kNoPrimitive); },
+        [&](size_t i) { occluded[i] = trees[1]->occluded(to_ray(rays[i]), kNoPrimitive); },
+        [&](size_t i) { occluded[i] = embree[0]->occluded(rays[i]); }, [&](size_t i) { occluded[i] = embree[1]->occluded(rays[i]); }};
+    std::vector<std::function<double()>> runs;
+    for (const auto* query : {closest, any})
+        for (ThreadPool* pool : {&one, &two})
+            for (int e = 0; e < 4; ++e) runs.push_back(pass(*pool, query[e]));
+    return interleaved_times(runs);
+}
+
+// One table row per query: rays per second of every engine and thread count, glint's speed over
+// Embree's on one thread (Embree's time over glint's; the best of each from each round's faster
+// engine), and the disagreements with Embree MEDIUM.
+void ray_rows(const std::string& set, size_t n, const Times& t, const Disagreements& d) {
+    for (int q = 0; q < 2; ++q) {
+        const std::vector<double>* one_thread = &t[8 * size_t(q)];
+        const auto rate = [&](int threads, int e) { return double(n) / median(t[8 * size_t(q) + 4 * size_t(threads - 1) + size_t(e)]) / 1e6; };
+        const auto fastest = [&](int e, int f) {
+            std::vector<double> times(one_thread[e].size());
+            for (size_t r = 0; r < times.size(); ++r) times[r] = std::min(one_thread[e][r], one_thread[f][r]);
+            return times;
+        };
+        const double best = paired_ratio(fastest(2, 3), fastest(0, 1));
+        const size_t* wrong = q == 0 ? d.closest : d.occluded;
+        g_ray_rows.push_back(format("| %s | %s | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f | %.2f | %.2f | %zu / %zu |",
+                                    set.c_str(), q == 0 ? "closest" : "any-hit", rate(1, 0), rate(2, 0), rate(1, 1), rate(2, 1),
+                                    rate(1, 2), rate(2, 2), rate(1, 3), rate(2, 3), paired_ratio(one_thread[2], one_thread[0]),
+                                    paired_ratio(one_thread[3], one_thread[1]), best, wrong[0], wrong[1]));
+    }
+}
+
+void bench_mesh(const std::string& shared, const std::string& name) {
+    const ObjMesh mesh = load_obj(shared + "/scenes/meshes/" + name + ".obj", size_t(1) << 30);
+    const std::vector<Triangle> triangles = to_triangles(mesh);
+    double unused;
+    const Embree medium(mesh, RTC_BUILD_QUALITY_MEDIUM, unused);
+    const Embree high(mesh, RTC_BUILD_QUALITY_HIGH, unused);
+    const Embree* embree[2] = {&medium, &high};
+    Geometry glint_bvh, split_bvh;
+    bench_builds(name, mesh, triangles, glint_bvh, split_bvh, embree);
+    const Geometry* trees[2] = {&glint_bvh, &split_bvh};
     for (const char* kind : {"primary", "diffuse"}) {
         const std::vector<RayRecord> rays = read_rays(shared + "/rays/" + name + "_" + kind + ".rays");
-        const size_t n = rays.size();
-        std::vector<HitRecord> a(n), b(n);
-        std::vector<char> o(n);
-        // Each engine's answers against Embree MEDIUM's.
-        size_t disagree[2] = {}, occlusion_disagree[2] = {};
-        for_rays(check_pool, n, [&](size_t i) { b[i] = medium.closest(rays[i]); o[i] = medium.occluded(rays[i]); });
-        for (int e = 0; e < 2; ++e) {
-            const Geometry& g = e == 0 ? glint_bvh : split_bvh;
-            for_rays(check_pool, n, [&](size_t i) { a[i] = glint_closest(g, rays[i]); });
-            for (size_t i = 0; i < n; ++i) {
-                disagree[e] += !agree(a[i], b[i]);
-                occlusion_disagree[e] += g.occluded(to_ray(rays[i]), kNoPrimitive) != bool(o[i]);
-            }
-        }
-        ThreadPool one(1), two(2);
-        // Each query on each engine with 1 and 2 threads, as seconds a pass.
-        const auto pass = [&](ThreadPool& pool, const std::function<void(size_t)>& f) {
-            return [&pool, &f, n] { return seconds([&] { for_rays(pool, n, f); }); };
-        };
-        const std::function<void(size_t)> closest[4] = {
-            [&](size_t i) { a[i] = glint_closest(glint_bvh, rays[i]); }, [&](size_t i) { a[i] = glint_closest(split_bvh, rays[i]); },
-            [&](size_t i) { b[i] = medium.closest(rays[i]); }, [&](size_t i) { b[i] = high.closest(rays[i]); }};
-        const std::function<void(size_t)> any[4] = {
-            [&](size_t i) { o[i] = glint_bvh.occluded(to_ray(rays[i]), kNoPrimitive); },
-            [&](size_t i) { o[i] = split_bvh.occluded(to_ray(rays[i]), kNoPrimitive); },
-            [&](size_t i) { o[i] = medium.occluded(rays[i]); }, [&](size_t i) { o[i] = high.occluded(rays[i]); }};
-        std::vector<std::function<double()>> runs;
-        for (const auto* query : {closest, any})
-            for (ThreadPool* pool : {&one, &two})
-                for (int e = 0; e < 4; ++e) runs.push_back(pass(*pool, query[e]));
-        // t[8q + 4(threads - 1) + engine], engines glint, glint split, MEDIUM, HIGH.
-        const Times t = interleaved_times(runs);
-        for (int q = 0; q < 2; ++q) {
-            const std::vector<double>* one_thread = &t[8 * size_t(q)];
-            const auto rate = [&](int threads, int e) { return double(n) / median(t[8 * size_t(q) + 4 * size_t(threads - 1) + size_t(e)]) / 1e6; };
-            // glint's speed over Embree's on one thread, as Embree's time over glint's; the best of
-            // each from each round's faster engine.
-            const auto fastest = [&](int e, int f) {
-                std::vector<double> times(one_thread[e].size());
-                for (size_t r = 0; r < times.size(); ++r) times[r] = std::min(one_thread[e][r], one_thread[f][r]);
-                return times;
-            };
-            const double best = paired_ratio(fastest(2, 3), fastest(0, 1));
-            g_ray_rows.push_back(format("| %s_%s | %s | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f / %.2f | %.2f | %.2f | %.2f | %zu / %zu |",
-                                        name.c_str(), kind, q == 0 ? "closest" : "any-hit", rate(1, 0), rate(2, 0), rate(1, 1), rate(2, 1),
-                                        rate(1, 2), rate(2, 2), rate(1, 3), rate(2, 3), paired_ratio(one_thread[2], one_thread[0]),
-                                        paired_ratio(one_thread[3], one_thread[1]), best,
-                                        q == 0 ? disagree[0] : occlusion_disagree[0], q == 0 ? disagree[1] : occlusion_disagree[1]));
-        }
+        const Disagreements d = check_answers(rays, trees, medium);
+        ray_rows(name + "_" + kind, rays.size(), time_queries(rays, trees, embree), d);
     }
 }
 
