@@ -11,7 +11,7 @@ nlohmann::json job_status(const Job& job) {
     const Progress& p = s.progress;
     const double eta = s.state == JobState::running ? eta_seconds(p) : 0;
     const std::string self = job_url(job.id());
-    nlohmann::json j = progress_json(p, {.seconds = "elapsed", .dropped = "dropped_samples"});
+    nlohmann::json j = progress_json(p);
     j.update({
         {"id", job.id()},
         {"state", to_string(s.state)},

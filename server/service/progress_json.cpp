@@ -6,29 +6,37 @@ namespace glint {
 
 using nlohmann::json;
 
-json progress_json(const Progress& p, const ProgressNames& names) {
+json progress_json(const Progress& p) {
     return {{"spp_done", p.spp_done},
             {"spp_target", p.spp_target},
-            {names.seconds, p.seconds},
+            {"elapsed", p.seconds},
             {"samples_per_second", p.samples_per_second},
             {"error_estimate", std::isfinite(p.error_estimate) ? json(p.error_estimate) : json()},
-            {names.dropped, p.dropped}};
+            {"dropped_samples", p.dropped}};
 }
 
 double eta_seconds(const Progress& p) {
     return p.spp_done > 0 ? p.seconds * (p.spp_target - p.spp_done) / p.spp_done : 0;
 }
 
+namespace {
+
+// The field `name`, or `old_name` in a store written before the schema was shared.
+const json& field(const json& j, const char* name, const char* old_name) {
+    return j.contains(name) ? j.at(name) : j.at(old_name);
+}
+
+}  // namespace
+
 Progress progress_from_json(const json& j) {
-    const ProgressNames names;
     Progress p;
     p.spp_done = j.at("spp_done").get<uint32_t>();
     p.spp_target = j.at("spp_target").get<uint32_t>();
-    p.seconds = j.at(names.seconds).get<double>();
+    p.seconds = field(j, "elapsed", "seconds").get<double>();
     p.samples_per_second = j.at("samples_per_second").get<double>();
     p.error_estimate =
         j.at("error_estimate").is_null() ? kInfinity : j.at("error_estimate").get<double>();
-    p.dropped = j.at(names.dropped).get<uint64_t>();
+    p.dropped = field(j, "dropped_samples", "dropped").get<uint64_t>();
     return p;
 }
 
