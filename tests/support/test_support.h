@@ -10,6 +10,15 @@ namespace glint::testing {
 
 inline LoadedScene scene_from(const std::string& json) { return parse_scene(json, {}); }
 
+// smallpt's Cornell box from scenes/, at 40×30 pixels and `spp` samples a pixel.
+inline LoadedScene small_cornell(uint32_t spp = 64) {
+    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    s.settings.width = 40;
+    s.settings.height = 30;
+    s.settings.spp = spp;
+    return s;
+}
+
 // Renders a scene on its own pool; the film holds every sample.
 inline std::unique_ptr<RenderJob> render(const LoadedScene& loaded, unsigned threads = 2) {
     ThreadPool pool(threads);

@@ -11,28 +11,16 @@
 namespace glint {
 namespace {
 
-LoadedScene small_cornell() {
-    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
-    s.settings.width = 40;
-    s.settings.height = 30;
-    return s;
-}
-
 // Renders samples [first, end) and returns them as a partial file's bytes.
 std::vector<uint8_t> render_part(LoadedScene s, uint32_t first, uint32_t end) {
     s.settings.first_sample = first;
     s.settings.spp = end - first;
     const auto job = testing::render(s);
-    Partial p;
-    p.fingerprint = fingerprint(*s.scene, s.settings);
-    p.first_sample = first;
-    p.end_sample = end;
-    p.film = job->film();
-    return encode_partial(p);
+    return encode_partial(partial_of(*job, fingerprint(*s.scene, s.settings), end - first));
 }
 
 TEST(Partial, ThreePartsMergeIntoTheWholeRender) {
-    LoadedScene s = small_cornell();
+    LoadedScene s = testing::small_cornell();
     s.settings.spp = 48;
     const auto whole = testing::render(s);
     const Partial merged = merge_partials({decode_partial(render_part(s, 32, 48)), decode_partial(render_part(s, 0, 12)),
@@ -60,7 +48,7 @@ TEST(Partial, ThreePartsMergeIntoTheWholeRender) {
 }
 
 TEST(Partial, RefusesGapsOverlapsForeignPartsAndDamage) {
-    const LoadedScene s = small_cornell();
+    const LoadedScene s = testing::small_cornell();
     const std::vector<uint8_t> a = render_part(s, 0, 8), b = render_part(s, 8, 16), c = render_part(s, 16, 24);
     auto error = [](std::vector<std::vector<uint8_t>> files) -> std::string {
         try {
@@ -74,7 +62,7 @@ TEST(Partial, RefusesGapsOverlapsForeignPartsAndDamage) {
     };
     EXPECT_EQ(error({a, c}), "samples [8, 16) are missing");
     EXPECT_EQ(error({a, b, b}), "parts overlap: [8, 16) and [8, 16)");
-    LoadedScene other = small_cornell();
+    LoadedScene other = testing::small_cornell();
     other.settings.seed = 7;
     EXPECT_EQ(error({a, render_part(other, 8, 16)}), "part [8, 16) is from another scene or settings");
     std::vector<uint8_t> flipped = b;
@@ -171,7 +159,7 @@ TEST(Partial, ReadsVersionsTwoAndThreeWithoutHalves) {
 }
 
 TEST(Partial, PartsOfAnotherSamplerVersionDoNotMerge) {
-    LoadedScene s = small_cornell();
+    LoadedScene s = testing::small_cornell();
     s.settings.spp = 8;
     Partial first = decode_partial(render_part(s, 0, 4)), second = decode_partial(render_part(s, 4, 8));
     EXPECT_EQ(first.sampler_version, kSamplerVersion);
@@ -185,7 +173,7 @@ TEST(Partial, PartsOfAnotherSamplerVersionDoNotMerge) {
 }
 
 TEST(Partial, FingerprintsDependOnWhatDecidesPixels) {
-    const LoadedScene s = small_cornell();
+    const LoadedScene s = testing::small_cornell();
     RenderSettings settings = s.settings;
     const uint64_t base = fingerprint(*s.scene, settings);
     settings.spp = 999;

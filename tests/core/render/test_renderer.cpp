@@ -8,16 +8,8 @@
 namespace glint {
 namespace {
 
-LoadedScene small_cornell(uint32_t spp) {
-    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
-    s.settings.width = 40;
-    s.settings.height = 30;
-    s.settings.spp = spp;
-    return s;
-}
-
 TEST(Renderer, ImagesAreBitIdenticalWithOneOrTwoThreads) {
-    const LoadedScene s = small_cornell(32);
+    const LoadedScene s = testing::small_cornell(32);
     const auto one = testing::render(s, 1), two = testing::render(s, 2);
     EXPECT_EQ(encode_pfm(one->film().mean()), encode_pfm(two->film().mean()));
     EXPECT_EQ(encode_png(one->film().mean(), Encoding::gamma22), encode_png(two->film().mean(), Encoding::gamma22));
@@ -25,7 +17,7 @@ TEST(Renderer, ImagesAreBitIdenticalWithOneOrTwoThreads) {
 }
 
 TEST(Renderer, PassSplitDoesNotChangeTheImage) {
-    const LoadedScene s = small_cornell(16);
+    const LoadedScene s = testing::small_cornell(16);
     ThreadPool pool(2);
     RenderJob whole(s.scene, s.settings), split(s.scene, s.settings);
     whole.render_pass(pool, 0, 16);
@@ -36,7 +28,7 @@ TEST(Renderer, PassSplitDoesNotChangeTheImage) {
 }
 
 TEST(Renderer, DifferentSeedsGiveDifferentImages) {
-    LoadedScene s = small_cornell(8);
+    LoadedScene s = testing::small_cornell(8);
     const auto a = testing::render(s);
     s.settings.seed = 1;
     const auto b = testing::render(s);
@@ -44,7 +36,7 @@ TEST(Renderer, DifferentSeedsGiveDifferentImages) {
 }
 
 TEST(Renderer, CancelStopsAfterThePassAndKeepsItsSamples) {
-    const LoadedScene s = small_cornell(4096);
+    const LoadedScene s = testing::small_cornell(4096);
     ThreadPool pool(2);
     RenderJob job(s.scene, s.settings);
     int passes = 0;
@@ -59,7 +51,7 @@ TEST(Renderer, CancelStopsAfterThePassAndKeepsItsSamples) {
 
 // An endless job (2^20 spp) that only `settings` can stop; returns why it stopped.
 StopReason run_unbounded(const std::function<void(RenderSettings&)>& settings, std::unique_ptr<RenderJob>& job) {
-    LoadedScene s = small_cornell(1u << 20);
+    LoadedScene s = testing::small_cornell(1u << 20);
     settings(s.settings);
     ThreadPool pool(2);
     job = std::make_unique<RenderJob>(s.scene, s.settings);
@@ -82,7 +74,7 @@ TEST(Renderer, StopsAtTheTargetError) {
 // each, and the film must see them as one, in the half of the sampler's replicate they drew from
 // (the even rounds: 0 and 2 of the tent's 3, 6 of the box's 12).
 TEST(Renderer, AddsSamplesToTheFilmInWholeRoundsOfTheirHalf) {
-    LoadedScene s = small_cornell(12);
+    LoadedScene s = testing::small_cornell(12);
     s.settings.width = s.settings.height = 4;
     for (const auto& [filter, first_half] : {std::pair{Filter::tent, 8u}, std::pair{Filter::box, 6u}}) {
         s.settings.filter = filter;
@@ -95,7 +87,7 @@ TEST(Renderer, AddsSamplesToTheFilmInWholeRoundsOfTheirHalf) {
 }
 
 TEST(Renderer, TentFilterRoundsSampleCountsUpToWholeSubpixelRounds) {
-    LoadedScene s = small_cornell(5);
+    LoadedScene s = testing::small_cornell(5);
     EXPECT_EQ(RenderJob(s.scene, s.settings).settings().spp, 8u);
     s.settings.filter = Filter::box;
     EXPECT_EQ(RenderJob(s.scene, s.settings).settings().spp, 5u);
