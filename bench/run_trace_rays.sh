@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake -S . -B build -G Ninja >/dev/null && cmake --build build --target glint >/dev/null
 shared=../shared
-echo "| ray set | triangles | build ms | BVH bytes/tri | query | Mrays/s 1 thread | Mrays/s 2 threads | hits |"
+echo "| ray set | triangles | build ms | bytes/triangle: nodes / with triangles | query | Mrays/s 1 thread | Mrays/s 2 threads | hits |"
 echo "|---|---|---|---|---|---|---|---|"
 for mesh in bunny sponza_dabrovic cornell_box; do
   for kind in primary diffuse; do
@@ -15,7 +15,7 @@ for mesh in bunny sponza_dabrovic cornell_box; do
       two=$(build/server/glint trace-rays "$shared/scenes/meshes/$mesh.obj" "$shared/rays/${mesh}_$kind.rays" --threads 2 --repeat 5 $flag)
       tris=$(sed -n 's/^triangles \([0-9]*\).*/\1/p' <<< "$one")
       build=$(sed -n 's/.*build \([0-9.]*\) ms.*/\1/p' <<< "$one")
-      bytes=$(sed -n 's/.* \([0-9.]*\) BVH bytes\/triangle.*/\1/p' <<< "$one")
+      bytes=$(sed -n 's/.* \([0-9.]*\) BVH node bytes\/triangle *\([0-9.]*\) with.*/\1 \/ \2/p' <<< "$one")
       m1=$(sed -n 's/.* \([0-9.]*\) Mrays\/s/\1/p' <<< "$one")
       m2=$(sed -n 's/.* \([0-9.]*\) Mrays\/s/\1/p' <<< "$two")
       hits=$(sed -n 's/.*hits \([0-9]*\) .*/\1/p' <<< "$one")
