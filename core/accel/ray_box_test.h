@@ -75,10 +75,11 @@ inline __m256 broadcast_lane(__m128 v, int i) {
     return _mm256_permutevar8x32_ps(_mm256_castps128_ps256(v), _mm256_set1_epi32(i));
 }
 
-// Lanes x, y and z of `v`, each in all eight lanes of its own register: a ray's per-axis values
-// beside eight boxes' planes.
-inline void broadcast_axes(__m128 v, __m256 (&axes)[3]) {
-    for (int a = 0; a < 3; ++a) axes[a] = broadcast_lane(v, a);
+// Lanes x, y and z of four vectors, each in all eight lanes of its own register (`to[v][axis]`):
+// a ray's per-axis values beside eight boxes' planes. Axis by axis, as the box tests read them.
+[[gnu::always_inline]] inline void broadcast_axes(const __m128 (&from)[4], __m256* const (&to)[4]) {
+    for (int a = 0; a < 3; ++a)
+        for (int v = 0; v < 4; ++v) to[v][a] = broadcast_lane(from[v], a);
 }
 
 // Bytes `offset` on from the first plane of a box.
@@ -100,10 +101,7 @@ public:
         const __m128 far_inv = _mm_mul_ps(inv, _mm_set1_ps(kFarPad));
         const __m128 near = _mm_blendv_ps(up, down, inv), far = _mm_blendv_ps(down, up, inv);
         offsets_ = &kPlaneOffsets[_mm_movemask_ps(inv) & 7];
-        broadcast_axes(near, near_origin_);
-        broadcast_axes(far, far_origin_);
-        broadcast_axes(inv, inv_);
-        broadcast_axes(far_inv, far_inv_);
+        broadcast_axes({near, far, inv, far_inv}, {near_origin_, far_origin_, inv_, far_inv_});
         tmin_ = broadcast_lane(down, 3);
     }
 
@@ -182,10 +180,7 @@ public:
         const __m128 near_offset = outward(o_inv, 1.0);
         const __m128 far_offset = outward(_mm256_mul_pd(o_inv, _mm256_set1_pd(double{kFarPad})), -1.0);
         offsets_ = &kPlaneOffsets[_mm_movemask_ps(inv) & 7];
-        broadcast_axes(inv, inv_);
-        broadcast_axes(far_inv, far_inv_);
-        broadcast_axes(near_offset, near_offset_);
-        broadcast_axes(far_offset, far_offset_);
+        broadcast_axes({inv, far_inv, near_offset, far_offset}, {inv_, far_inv_, near_offset_, far_offset_});
         // +0 for tmin = -0 too: the entry's maximum needs an operand that is not negative.
         tmin_ = _mm256_castps_si256(_mm256_set1_ps(ray.tmin > 0 ? to_float_down(ray.tmin) : 0.0f));
     }
