@@ -2,7 +2,7 @@
 # Shows that a change moved code and nothing else: every scene in scenes/ renders to the same
 # PNG and PFM bytes with this tree's glint and with REV's, at small sizes and fixed seeds, and
 # `glint trace-rays` writes the same hit files on every shared ray set (closest and any hit).
-#   bench/check_identical.sh REV        e.g. bench/check_identical.sh rehouse-base
+#   bench/check_identical.sh REV        e.g. bench/check_identical.sh 3ab8039
 # Prints one line per comparison and exits non-zero if any differs. OLD_GLINT and NEW_GLINT in the
 # environment name binaries already built, for REV and for this tree, instead of building them;
 # SHARED the folder of the shared meshes and ray sets (default: ../shared beside the tree).
