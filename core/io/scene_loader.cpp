@@ -121,6 +121,7 @@ public:
         loaded.scene = std::make_shared<const Scene>(camera, background, integrator, std::move(spheres_),
                                                      std::move(triangles_), std::move(materials_),
                                                      std::move(material_of_prim_));
+        loaded.warnings = std::move(warnings_);
         return loaded;
     }
 
@@ -205,24 +206,40 @@ private:
         material_of_prim_.insert(material_of_prim_.begin(), sphere_materials_.begin(), sphere_materials_.end());
     }
 
-    uint32_t parse_appearance(const At& object) {
-        Material m;
-        if (object.has("material")) {
-            const At at = object["material"];
-            at.expect_object({"type", "albedo", "ior"});
-            if (at.has("type")) {
-                const std::string type = at["type"].choice({"diffuse", "mirror", "glass"});
-                m.type = type == "diffuse" ? MaterialType::diffuse : type == "mirror" ? MaterialType::mirror : MaterialType::glass;
-            }
-            if (m.type != MaterialType::diffuse) m.albedo = Rgb{1};
-            // Albedo above 1 would create energy.
-            if (at.has("albedo")) m.albedo = at["albedo"].colour(1);
-            if (at.has("ior")) {
-                if (m.type != MaterialType::glass) at["ior"].fail("only glass has an index of refraction");
-                m.ior = at["ior"].number_in(1e-3, 1e3);
-            }
+    static MaterialType material_type(const At& at) {
+        const std::string type = at.choice({"diffuse", "mirror", "glass"});
+        return type == "diffuse" ? MaterialType::diffuse : type == "mirror" ? MaterialType::mirror : MaterialType::glass;
+    }
+
+    // The fields `at` gives, over `m`. A new type brings its own default albedo (1 for mirror
+    // and glass) unless `albedo` is given too.
+    static Material material_fields(const At& at, Material m, bool with_emission) {
+        if (with_emission) at.expect_object({"type", "albedo", "ior", "emission"});
+        else at.expect_object({"type", "albedo", "ior"});
+        if (at.has("type")) {
+            const MaterialType type = material_type(at["type"]);
+            if (type != m.type) m.albedo = type == MaterialType::diffuse ? Material{}.albedo : Rgb{1};
+            m.type = type;
         }
+        // Albedo above 1 would create energy.
+        if (at.has("albedo")) m.albedo = at["albedo"].colour(1);
+        if (at.has("ior")) {
+            if (m.type != MaterialType::glass) at["ior"].fail("only glass has an index of refraction");
+            m.ior = at["ior"].number_in(1e-3, 1e3);
+        }
+        if (with_emission && at.has("emission")) m.emission = at["emission"].colour(kMaxEmission);
+        return m;
+    }
+
+    // An object's own `material` and `emission`.
+    static Material object_material(const At& object) {
+        Material m;
+        if (object.has("material")) m = material_fields(object["material"], m, false);
         if (object.has("emission")) m.emission = object["emission"].colour(kMaxEmission);
+        return m;
+    }
+
+    uint32_t add_material(const Material& m) {
         materials_.push_back(m);
         return uint32_t(materials_.size() - 1);
     }
@@ -233,38 +250,86 @@ private:
         if (!at.has("radius")) at.fail("a sphere needs a \"radius\"");
         const Sphere s{at["center"].vec3(limits_.max_coordinate), at["radius"].positive(limits_.max_coordinate)};
         spheres_.push_back(s);
-        sphere_materials_.push_back(parse_appearance(at));
+        sphere_materials_.push_back(add_material(object_material(at)));
     }
 
     void parse_mesh(const At& at) {
-        at.expect_object({"type", "file", "vertices", "indices", "scale", "translate", "material", "emission"});
+        at.expect_object({"type", "file", "vertices", "indices", "scale", "translate", "material", "materials", "emission"});
         ObjMesh mesh;
         if (at.has("file")) {
             if (at.has("vertices") || at.has("indices")) at.fail("give either file or vertices and indices, not both");
-            mesh = load_mesh_file(at["file"]);
+            // The object's own material replaces the library's, which is then read only for
+            // the names `materials` overrides.
+            const bool own = at.has("material") || at.has("emission");
+            mesh = load_mesh_file(at["file"], !own || at.has("materials"));
         } else {
             if (!at.has("vertices") || !at.has("indices")) at.fail("a mesh needs a \"file\", or \"vertices\" and \"indices\"");
+            if (at.has("materials")) at["materials"].fail("only a mesh file's materials can be overridden by name");
             mesh = parse_inline_mesh(at["vertices"], at["indices"]);
         }
-        Vec3 scale{1};
-        if (at.has("scale")) {
-            const At s = at["scale"];
-            scale = s.value.is_number() ? Vec3{s.positive(limits_.max_coordinate)} : s.vec3(limits_.max_coordinate);
-            if (!(min_component(abs(scale)) > 0)) s.fail("must not be zero");
-        }
+        const Vec3 scale = at.has("scale") ? parse_scale(at["scale"]) : Vec3{1};
         const Vec3 translate = at.has("translate") ? at["translate"].vec3(limits_.max_coordinate) : Vec3{};
         if (triangles_.size() + mesh.triangles.size() > limits_.max_triangles)
             at.fail("too many triangles in the scene (limit " + std::to_string(limits_.max_triangles) + ")");
         for (const Vec3& v : mesh.vertices)
             if (!(max_component(abs(v * scale + translate)) <= limits_.max_coordinate))
                 at.fail("a vertex lies beyond the coordinate limit " + At::format(limits_.max_coordinate));
-        const uint32_t material = parse_appearance(at);
+        assign_mesh_materials(at, mesh);
         const std::vector<Triangle> placed = to_triangles(mesh, scale, translate);
         triangles_.insert(triangles_.end(), placed.begin(), placed.end());
-        material_of_prim_.insert(material_of_prim_.end(), placed.size(), material);
     }
 
-    ObjMesh load_mesh_file(const At& at) const {
+    Vec3 parse_scale(const At& s) const {
+        const Vec3 scale = s.value.is_number() ? Vec3{s.positive(limits_.max_coordinate)} : s.vec3(limits_.max_coordinate);
+        if (!(min_component(abs(scale)) > 0)) s.fail("must not be zero");
+        return scale;
+    }
+
+    // Each triangle's material: its library's (mapped by mtl_material.h), or the object's own
+    // `material` for every face when given; then `materials` overrides fields by name. Faces
+    // under no library material take the object's.
+    void assign_mesh_materials(const At& at, const ObjMesh& mesh) {
+        const Material own = object_material(at);
+        const uint32_t fallback = add_material(own);
+        if (mesh.triangle_material.empty()) {
+            material_of_prim_.insert(material_of_prim_.end(), mesh.triangles.size(), fallback);
+            return;
+        }
+        const bool replaced = at.has("material") || at.has("emission");
+        std::vector<Material> library;
+        for (const ObjMaterial& m : mesh.materials) library.push_back(replaced ? own : m.material);
+        if (at.has("materials")) override_by_name(at["materials"], mesh.materials, library);
+        const auto first = uint32_t(materials_.size());
+        materials_.insert(materials_.end(), library.begin(), library.end());
+        std::vector<bool> used(library.size());
+        for (const uint32_t m : mesh.triangle_material) {
+            material_of_prim_.push_back(m == kNoObjMaterial ? fallback : first + m);
+            if (m != kNoObjMaterial) used[m] = true;
+        }
+        for (const std::string& w : mesh.warnings) warnings_.push_back(at["file"].path + ": " + w);
+        for (size_t i = 0; i < library.size(); ++i)
+            if (used[i] && !replaced) warn_ignored(at["file"], mesh.materials[i]);
+    }
+
+    void override_by_name(const At& at, const std::vector<ObjMaterial>& names, std::vector<Material>& library) const {
+        if (!at.value.is_object()) at.fail("must be an object of material names");
+        for (const auto& item : at.value.items()) {
+            size_t i = 0;
+            while (i < names.size() && names[i].name != item.key()) ++i;
+            const At field{item.value(), at.path + "." + item.key()};
+            if (i == names.size()) field.fail("the OBJ's material libraries have no material of this name");
+            library[i] = material_fields(field, library[i], true);
+        }
+    }
+
+    void warn_ignored(const At& file, const ObjMaterial& m) {
+        if (m.ignored.empty()) return;
+        std::string list;
+        for (const std::string& what : m.ignored) list += (list.empty() ? "" : "; ") + what;
+        warnings_.push_back(file.path + ": material \"" + m.name + "\": ignored " + list);
+    }
+
+    ObjMesh load_mesh_file(const At& at, bool with_materials) const {
         if (!at.value.is_string()) at.fail("must be a file name");
         const std::filesystem::path name = at.value.get<std::string>();
         if (folder_.empty()) at.fail("file references need a scene folder");
@@ -273,10 +338,23 @@ private:
         const auto full = resolve_inside(folder_, name.string());
         if (!full) at.fail("must stay inside the scene's folder");
         try {
-            return load_obj(full->string(), limits_.max_file_bytes);
+            return load_obj(full->string(), limits_.max_file_bytes,
+                            with_materials ? library_opener(name.parent_path()) : MtlOpener{});
         } catch (const std::exception& e) {
             at.fail(e.what());
         }
+    }
+
+    // Material libraries are named relative to their OBJ, and held to the scene's folder too.
+    MtlOpener library_opener(const std::filesystem::path& obj_folder) const {
+        return [this, obj_folder](const std::string& library) {
+            if (std::filesystem::path(library).has_root_path())
+                throw std::runtime_error("must be relative to the OBJ's folder");
+            const auto full = resolve_inside(folder_, (obj_folder / library).string());
+            if (!full) throw std::runtime_error("must stay inside the scene's folder");
+            const std::vector<uint8_t> bytes = read_file(full->string(), limits_.max_file_bytes);
+            return std::string(bytes.begin(), bytes.end());
+        };
     }
 
     ObjMesh parse_inline_mesh(const At& vertices, const At& indices) const {
@@ -302,6 +380,7 @@ private:
     std::vector<Triangle> triangles_;
     std::vector<Material> materials_;
     std::vector<uint32_t> sphere_materials_, material_of_prim_;
+    std::vector<std::string> warnings_;
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "io/film_overrides.h"
 #include "io/scene_limits.h"
@@ -16,6 +17,9 @@ namespace glint {
 struct LoadedScene {
     std::shared_ptr<const Scene> scene;
     RenderSettings settings;  // the file's film settings, to be overridden per job
+    // What the scene asks for that glint does not model (an OBJ material's texture, ...), each
+    // line led by the JSON path it is about. The scene renders without it.
+    std::vector<std::string> warnings;
 };
 
 // `folder` is where mesh files are looked up; file references outside it are refused, and

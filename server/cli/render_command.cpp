@@ -87,6 +87,7 @@ int render_scene(const RenderOptions& o, const std::string& scene, const Outputs
         std::fprintf(stderr, "glint: %s: %s\n", scene.c_str(), e.what());
         return 1;
     }
+    for (const std::string& w : loaded.warnings) spdlog::warn("{}: {}", scene, w);
     const Geometry& g = loaded.scene->geometry();
     spdlog::info("{}: {} spheres, {} triangles ({} degenerate, ignored), {} lights; {}x{}, {} spp", scene,
                  g.sphere_count(), g.triangle_count(), g.degenerate_triangles(), loaded.scene->lights().size(),

@@ -27,6 +27,7 @@ nlohmann::json job_status(const Job& job) {
           {"events", self + "/events"}}},
     });
     if (!s.error.empty()) j["error"] = s.error;
+    if (!job.warnings().empty()) j["warnings"] = job.warnings();
     return j;
 }
 

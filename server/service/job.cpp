@@ -18,7 +18,7 @@ uint32_t most_samples(const Film& film) {
 }  // namespace
 
 Job::Job(std::string id, const LoadedScene& scene, const JobStore* store, std::chrono::system_clock::time_point created)
-    : id_(std::move(id)), render_(scene.scene, scene.settings), created_(created), store_(store) {
+    : id_(std::move(id)), render_(scene.scene, scene.settings), created_(created), warnings_(scene.warnings), store_(store) {
     snapshot_.progress.spp_target = render_.settings().spp;
     if (store_) fingerprint_ = fingerprint(*scene.scene, scene.settings);
 }

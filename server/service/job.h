@@ -37,6 +37,8 @@ public:
     const std::string& id() const { return id_; }
     const RenderSettings& settings() const { return render_.settings(); }
     std::chrono::system_clock::time_point created() const { return created_; }
+    // The scene's warnings (what it asks for that glint does not model), fixed at submission.
+    const std::vector<std::string>& warnings() const { return warnings_; }
 
     // Renders to the end on `pool` (called by the job manager's slot thread).
     void run(ThreadPool& pool);
@@ -70,6 +72,7 @@ private:
     const std::string id_;
     RenderJob render_;
     std::chrono::system_clock::time_point created_;
+    const std::vector<std::string> warnings_;
     const JobStore* store_;
     uint64_t fingerprint_ = 0;  // of scene and settings, written into the film files
     double seconds_before_ = 0;  // rendering time before a restart

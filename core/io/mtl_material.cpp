@@ -1,0 +1,99 @@
+#include "io/mtl_material.h"
+
+#include <tiny_obj_loader.h>
+
+#include <charconv>
+
+namespace glint {
+namespace {
+
+// tinyobjloader parses into float. The shortest decimal that reads back as that float is, for
+// any value written with up to 6 significant digits, the one in the file: parsed as a double it
+// gives the value a scene's JSON would (Kd 0.725 and "albedo": 0.725 render the same bits).
+double widen(float v) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+    double out = 0;
+    std::from_chars(text, end, out);
+    return out;
+}
+
+Rgb rgb(const tinyobj::real_t (&c)[3]) { return {widen(c[0]), widen(c[1]), widen(c[2])}; }
+
+// Every colour the mapping reads, checked once: nothing negative, infinite or NaN goes on.
+void check_colours(const tinyobj::material_t& mtl) {
+    const std::pair<const tinyobj::real_t(*)[3], const char*> colours[] = {
+        {&mtl.diffuse, "Kd"}, {&mtl.specular, "Ks"}, {&mtl.transmittance, "Tf"}, {&mtl.emission, "Ke"}};
+    for (const auto& [c, key] : colours)
+        for (const tinyobj::real_t v : *c)
+            if (!(v >= 0 && v <= kMaxMtlEmission))
+                throw MtlError("material \"" + mtl.name + "\": " + key + " must be in [0, 1e12]");
+}
+
+// A reflectance above 1 would create energy: clamped, and said.
+Rgb reflectance(const Rgb& c, const char* key, ObjMaterial& out) {
+    if (max_component(c) <= 1) return c;
+    out.ignored.push_back(std::string(key) + " above 1 (clamped to 1)");
+    return min(c, Rgb{1});
+}
+
+// MTL's illumination models 4, 6, 7 and 9 transmit light; so does any dissolve below 1, which
+// is how most exporters mark glass. Tf alone does not: the MTL specification applies it only
+// under those models, and exporters write `Tf 1 1 1` on opaque materials.
+bool is_dielectric(const tinyobj::material_t& mtl) {
+    return mtl.illum == 4 || mtl.illum == 6 || mtl.illum == 7 || mtl.illum == 9 || mtl.dissolve < 1;
+}
+
+// Illumination model 3 (ray-traced reflection), or a specular colour with no diffuse one.
+bool is_mirror(const tinyobj::material_t& mtl) {
+    return mtl.illum == 3 || (is_black(rgb(mtl.diffuse)) && !is_black(rgb(mtl.specular)));
+}
+
+void note_textures(const tinyobj::material_t& mtl, ObjMaterial& out) {
+    const std::pair<const std::string*, const char*> maps[] = {
+        {&mtl.diffuse_texname, "map_Kd"},   {&mtl.specular_texname, "map_Ks"}, {&mtl.specular_highlight_texname, "map_Ns"},
+        {&mtl.bump_texname, "bump"},        {&mtl.displacement_texname, "disp"}, {&mtl.alpha_texname, "map_d"},
+        {&mtl.reflection_texname, "refl"},  {&mtl.roughness_texname, "map_Pr"}, {&mtl.metallic_texname, "map_Pm"},
+        {&mtl.emissive_texname, "map_Ke"},  {&mtl.normal_texname, "norm"}};
+    for (const auto& [name, key] : maps)
+        if (!name->empty()) out.ignored.push_back(std::string("texture ") + key + " " + *name);
+}
+
+void map_glass(const tinyobj::material_t& mtl, ObjMaterial& out) {
+    out.material.type = MaterialType::glass;
+    const Rgb filter = rgb(mtl.transmittance);
+    out.material.albedo = is_black(filter) ? Rgb{1} : reflectance(filter, "Tf", out);
+    // tinyobjloader reads a missing Ni as 1, an index that would make the glass invisible.
+    if (mtl.ior > 1 || (mtl.ior > 0 && mtl.ior < 1)) out.material.ior = widen(mtl.ior);
+    else out.ignored.push_back("Ni 1 or none (glass uses 1.5)");
+}
+
+void map_mirror(const tinyobj::material_t& mtl, ObjMaterial& out) {
+    out.material.type = MaterialType::mirror;
+    const Rgb specular = rgb(mtl.specular);
+    out.material.albedo = is_black(specular) ? Rgb{1} : reflectance(specular, "Ks", out);
+    if (!is_black(rgb(mtl.diffuse))) out.ignored.push_back("Kd of a mirror");
+}
+
+void map_diffuse(const tinyobj::material_t& mtl, ObjMaterial& out) {
+    out.material.type = MaterialType::diffuse;
+    out.material.albedo = reflectance(rgb(mtl.diffuse), "Kd", out);
+    if (!is_black(rgb(mtl.specular))) out.ignored.push_back("glossy highlight (Ks, Ns)");
+}
+
+}  // namespace
+
+ObjMaterial map_mtl_material(const tinyobj::material_t& mtl) {
+    check_colours(mtl);
+    ObjMaterial out{mtl.name, {}, {}};
+    if (is_dielectric(mtl)) map_glass(mtl, out);
+    else if (is_mirror(mtl)) map_mirror(mtl, out);
+    else map_diffuse(mtl, out);
+    out.material.emission = rgb(mtl.emission);
+    if (mtl.roughness > 0 || mtl.metallic > 0 || mtl.sheen > 0 || mtl.clearcoat_thickness > 0)
+        out.ignored.push_back("PBR parameters (Pr, Pm, Ps, Pc)");
+    note_textures(mtl, out);
+    return out;
+}
+
+}  // namespace glint
