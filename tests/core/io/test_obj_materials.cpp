@@ -116,6 +116,15 @@ TEST_F(ObjMaterials, LibrariesStayInsideTheScenesFolder) {
     EXPECT_EQ(error_of(""), "objects[0].file: mtllib /etc/passwd: must be relative to the OBJ's folder");
 }
 
+TEST_F(ObjMaterials, AUsemtlTheLibraryLacksTakesTheObjectsMaterialAndIsSaid) {
+    write(root_ / "scene" / "meshes" / "two.obj", std::string(kObj) + "usemtl nothere\nf 1 2 3\n");
+    const LoadedScene s = load(R"(, "materials": {"paint": {"albedo": 0.1}})");
+    ASSERT_EQ(s.scene->geometry().primitive_count(), 5u);
+    EXPECT_EQ(s.scene->material(4).albedo, Material{}.albedo);
+    ASSERT_EQ(s.warnings.size(), 2u);
+    EXPECT_NE(s.warnings[0].find("nothere"), std::string::npos) << s.warnings[0];
+}
+
 TEST_F(ObjMaterials, BadLibraryColoursAreErrors) {
     write(root_ / "scene" / "meshes" / "two.mtl", "newmtl paint\nKd 0.5 -1 0.5\n");
     EXPECT_EQ(error_of(""), "objects[0].file: material \"paint\": Kd must be in [0, 1e12]");

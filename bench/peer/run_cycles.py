@@ -1,0 +1,208 @@
+#!/usr/bin/python3
+"""glint against Blender Cycles on every mesh scene in scenes/: do they converge to the same
+image, and how long does each take to reach the same error? (bench/BENCHMARKS.md, "Against
+Cycles"; the scene translation is bench/peer/cycles_scene.py.)
+
+  /usr/bin/python3 bench/peer/run_cycles.py [--scenes mesh,cornell_box] [--width 160 --height 120]
+                                            [--ladder 4,16,64,256] [--reference-spp 1024]
+
+Installs Blender from Debian when it is missing (about 400 MB: never in CI). Both renderers run
+at 2 threads with a box pixel filter of width 1. For each scene and renderer: a ladder of renders
+(one per spp) and a reference made of two renders with other seeds. A renderer's error is measured
+against its own reference, and the reference's own noise, (A - B)²/4 from its two halves, is taken
+off, so that neither is charged for the other's conventions; whether the two references agree is
+reported beside it. CPU seconds are the process's user + sys over the render (Cycles: the render
+call, scene sync included; glint: the whole command, scene load and BVH build included).
+Writes bench/results/peer_cycles.csv and bench/plots/peer_cycles.svg and prints a table.
+"""
+import argparse
+import csv
+import json
+import os
+import resource
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+GLINT = os.path.join(ROOT, "build", "server", "glint")
+SEEDS = {"ladder": 7, "reference": (101, 102)}
+
+
+def read_pfm(path):
+    with open(path, "rb") as f:
+        if f.readline().strip() != b"PF":
+            raise ValueError(f"{path}: not a colour PFM")
+        w, h = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
+    return data.reshape(h, w, 3).astype(np.float64)
+
+
+def mesh_scenes():
+    names = []
+    for file in sorted(os.listdir(os.path.join(ROOT, "scenes"))):
+        if file.endswith(".json") and not file.startswith("."):
+            with open(os.path.join(ROOT, "scenes", file)) as f:
+                objects = json.load(f).get("objects", [])
+            if all(o.get("type") == "mesh" for o in objects):
+                names.append(file[:-5])
+    return names
+
+
+def box_filter_copy(name):
+    """The scene with film.filter "box", beside the original so its mesh files resolve."""
+    with open(os.path.join(ROOT, "scenes", name + ".json")) as f:
+        scene = json.load(f)
+    scene.setdefault("film", {})["filter"] = "box"
+    path = os.path.join(ROOT, "scenes", f".peer-{name}.json")
+    with open(path, "w") as f:
+        json.dump(scene, f)
+    return path
+
+
+def timed(command):
+    """Runs command; returns (CPU seconds of the child, user + sys; wall seconds)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime, wall
+
+
+def run_glint(scene, out, a, jobs):
+    """jobs: [(spp, seed)] -> {(spp, seed): (image, cpu, wall)}."""
+    results = {}
+    for spp, seed in jobs:
+        pfm = f"{out}_{spp}_{seed}.pfm"
+        cpu, wall = timed([GLINT, "render", scene, "-o", pfm[:-4] + ".png", "--hdr", pfm, "--width", str(a.width),
+                           "--height", str(a.height), "--spp", str(spp), "--seed", str(seed), "--threads", "2"])
+        results[(spp, seed)] = (read_pfm(pfm), cpu, wall)
+    return results
+
+
+def run_cycles(scene, out, a, jobs):
+    if os.path.exists(out + ".jsonl"):
+        os.remove(out + ".jsonl")
+    for spp, seed in jobs:  # one Blender per render keeps each timing alone in its process
+        subprocess.run(["blender", "-b", "--factory-startup", "-noaudio", "-t", "2", "--python",
+                        os.path.join(ROOT, "bench", "peer", "cycles_scene.py"), "--", scene, "--width", str(a.width),
+                        "--height", str(a.height), "--spp", str(spp), "--seeds", str(seed), "--out", out],
+                       check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    results = {}
+    with open(out + ".jsonl") as f:
+        for line in f:
+            r = json.loads(line)
+            results[(r["spp"], r["seed"])] = (read_pfm(f"{out}_{r['spp']}_{r['seed']}.pfm"), r["cpu"], r["wall"])
+    return results
+
+
+def measure(results, a):
+    """Per rung: spp, cpu, wall, MSE and relMSE against the renderer's own reference, noise removed."""
+    ra, rb = (results[(a.reference_spp, s)][0] for s in SEEDS["reference"])
+    reference = (ra + rb) / 2
+    ref_mse = np.mean((ra - rb) ** 2) / 4
+    ref_rel = np.mean((ra - rb) ** 2 / (reference ** 2 + 1e-2)) / 4
+    rows = []
+    for spp in a.ladder:
+        image, cpu, wall = results[(spp, SEEDS["ladder"])]
+        mse = np.mean((image - reference) ** 2) - ref_mse
+        rel = np.mean((image - reference) ** 2 / (reference ** 2 + 1e-2)) - ref_rel
+        rows.append({"spp": spp, "cpu": cpu, "wall": wall, "mse": mse, "relmse": rel})
+    return reference, ref_mse, rows
+
+
+def time_to(rows, mse, key):
+    """Seconds (key: cpu or wall) to reach `mse`, interpolated in log-log between rungs (MSE ∝ 1/t
+    beyond the ends)."""
+    pts = sorted((r[key], r["mse"]) for r in rows if r["mse"] > 0)
+    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
+        if e1 <= mse <= e0:
+            f = np.log(e0 / mse) / np.log(e0 / e1)
+            return float(np.exp(np.log(t0) + f * np.log(t1 / t0)))
+    t, e = pts[-1] if mse < pts[-1][1] else pts[0]
+    return t * e / mse
+
+
+def compare(name, g, c, a):
+    g_ref, g_ref_mse, g_rows = measure(g, a)
+    c_ref, c_ref_mse, c_rows = measure(c, a)
+    ratio = g_ref.mean(axis=(0, 1)) / c_ref.mean(axis=(0, 1))
+    between = float(np.sqrt(np.mean((g_ref - c_ref) ** 2)))
+    noise = float(np.sqrt(g_ref_mse + c_ref_mse))
+    # Equal error: the error Cycles reaches at its top rung.
+    target = c_rows[-1]["mse"]
+    summary = {"scene": name, "mean_ratio": [round(float(x), 4) for x in ratio],
+               "refs_rmse": between, "refs_noise": noise,
+               "cpu_ratio": time_to(c_rows, target, "cpu") / time_to(g_rows, target, "cpu"),
+               "wall_ratio": time_to(c_rows, target, "wall") / time_to(g_rows, target, "wall"),
+               "mse_per_spp_ratio": (g_rows[-1]["mse"] * g_rows[-1]["spp"]) / (c_rows[-1]["mse"] * c_rows[-1]["spp"]),
+               "cpu_per_spp_ratio": (g_rows[-1]["cpu"] / g_rows[-1]["spp"]) / (c_rows[-1]["cpu"] / c_rows[-1]["spp"])}
+    return summary, g_rows, c_rows
+
+
+def plot(curves, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(curves), figsize=(4.2 * len(curves), 3.6), squeeze=False)
+    for ax, (name, g_rows, c_rows) in zip(axes[0], curves):
+        for rows, label, style in ((g_rows, "glint", "o-"), (c_rows, "Cycles", "s--")):
+            ax.loglog([r["cpu"] for r in rows], [np.sqrt(max(r["mse"], 1e-30)) for r in rows], style, label=label)
+        ax.set_title(name)
+        ax.set_xlabel("CPU seconds (2 threads)")
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0][0].set_ylabel("RMSE against own reference")
+    axes[0][0].legend()
+    fig.tight_layout()
+    fig.savefig(path)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--scenes", default=",".join(mesh_scenes()))
+    ap.add_argument("--width", type=int, default=160)
+    ap.add_argument("--height", type=int, default=120)
+    ap.add_argument("--ladder", default="4,16,64,256")
+    ap.add_argument("--reference-spp", type=int, default=1024)
+    ap.add_argument("--out", default=os.path.join(ROOT, "bench", "out", "peer"))
+    a = ap.parse_args()
+    a.ladder = [int(s) for s in a.ladder.split(",")]
+    if not shutil.which("blender"):
+        subprocess.run(["apt-get", "install", "-y", "--no-install-recommends", "blender"], check=True)
+    os.makedirs(a.out, exist_ok=True)
+    jobs = [(s, SEEDS["ladder"]) for s in a.ladder] + [(a.reference_spp, s) for s in SEEDS["reference"]]
+    summaries, curves, table = [], [], []
+    for name in a.scenes.split(","):
+        copy = box_filter_copy(name)
+        try:
+            g = run_glint(copy, os.path.join(a.out, f"{name}_glint"), a, jobs)
+            c = run_cycles(copy, os.path.join(a.out, f"{name}_cycles"), a, jobs)
+        finally:
+            os.remove(copy)
+        summary, g_rows, c_rows = compare(name, g, c, a)
+        summaries.append(summary)
+        curves.append((name, g_rows, c_rows))
+        for renderer, rows in (("glint", g_rows), ("cycles", c_rows)):
+            table += [{"scene": name, "renderer": renderer, **r} for r in rows]
+        print(json.dumps(summary), flush=True)
+    with open(os.path.join(ROOT, "bench", "results", "peer_cycles.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=["scene", "renderer", "spp", "cpu", "wall", "mse", "relmse"])
+        w.writeheader()
+        w.writerows(table)
+    with open(os.path.join(ROOT, "bench", "results", "peer_cycles_summary.json"), "w") as f:
+        json.dump(summaries, f, indent=1)
+    plot(curves, os.path.join(ROOT, "bench", "plots", "peer_cycles.svg"))
+    print("| scene | glint/Cycles mean (R, G, B) | RMSE between references (noise) | Cycles/glint time to equal MSE, CPU (wall) | MSE per spp, glint/Cycles | CPU per spp, glint/Cycles |")
+    print("|---|---|---|---|---|---|")
+    for s in summaries:
+        print(f"| {s['scene']} | {', '.join(f'{x:.4f}' for x in s['mean_ratio'])} | {s['refs_rmse']:.4f} ({s['refs_noise']:.4f}) "
+              f"| {s['cpu_ratio']:.2f}× ({s['wall_ratio']:.2f}×) | {s['mse_per_spp_ratio']:.2f} | {s['cpu_per_spp_ratio']:.2f} |")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
