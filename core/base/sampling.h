@@ -76,6 +76,9 @@ inline void sample_disk(double u1, double u2, double& x, double& y) {
 }
 
 // Barycentric weights of a uniformly distributed point on a triangle.
+// The largest double below 1: where a remapped uniform number must stay inside [0, 1).
+inline constexpr double kOneMinusEpsilon = 0x1.fffffffffffffp-1;
+
 inline Vec3 sample_uniform_triangle(double u1, double u2) {
     const double s = std::sqrt(u1);
     return {1 - s, s * (1 - u2), s * u2};

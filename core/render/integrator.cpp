@@ -42,10 +42,9 @@ bool survives_roulette(Rgb& value, double threshold, Rng& rng) {
 
 Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, const Rgb& beta,
                              double u1, double u2, Rng& rng) const {
-    const double u_pick = rng.uniform();
     LightSample ls;
     const Vec3 facing = dot(d, si.n) < 0 ? si.n : -si.n;
-    if (!scene_.lights().sample(si.p, si.prim, u_pick, u1, u2, ls, facing)) return Rgb{0};
+    if (!scene_.lights().sample(si.p, si.prim, u1, u2, ls, facing)) return Rgb{0};
     double bsdf_pdf;
     const Rgb f_cos = diffuse_f_cos(m, d, si.n, ls.wi, bsdf_pdf);
     Rgb value = beta * f_cos * ls.emission * (power_heuristic(ls.pdf, bsdf_pdf) / ls.pdf);

@@ -91,7 +91,7 @@ enum class Sampler { sobol, independent };
 // Changes whenever the points a sampler gives a (seed, pixel, sample) change, so that a film
 // rendered with other points is never merged with or resumed by this version's: partial files
 // record it (partial_file.h).
-inline constexpr uint32_t kSamplerVersion = 2;
+inline constexpr uint32_t kSamplerVersion = 3;
 
 // The numbers a camera path's first diffuse vertex takes from the sampler instead of its random
 // stream: the light sample there and the direction of the bounce from it.

@@ -99,11 +99,16 @@ double LightSet::toward(const Vec3& p, const Vec3& q, const Vec3& nq, double are
     return area_pdf_to_solid_angle(dist2, std::fabs(dot(nq, to)) / out.distance, area);
 }
 
-bool LightSet::sample(const Vec3& p, uint32_t self, double u_pick, double u1, double u2, LightSample& out,
+bool LightSet::sample(const Vec3& p, uint32_t self, double u1, double u2, LightSample& out,
                       const Vec3& facing) const {
     if (lights_.empty()) return false;
-    const size_t index = std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u_pick) - cdf_.begin(),
+    const size_t index = std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u1) - cdf_.begin(),
                                           lights_.size() - 1);
+    // u1 picks the light and, stretched over the light's own share of [0, 1), places the point on
+    // it: stratified (u1, u2) stay stratified over every light, where a separate random pick
+    // would hand each triangle of a quad a random half of the strata.
+    const double below = index == 0 ? 0 : cdf_[index - 1];
+    u1 = std::clamp((u1 - below) / (cdf_[index] - below), 0.0, kOneMinusEpsilon);
     const Light& light = lights_[index];
     out.prim = light.prim;
     out.emission = light.emission;

@@ -33,8 +33,9 @@ public:
     size_t size() const { return lights_.size(); }
 
     // A light point as seen from p, which lies on primitive `self` (or kNoPrimitive); `facing`
-    // is self's unit normal on the side p looks from (zero if unknown).
-    bool sample(const Vec3& p, uint32_t self, double u_pick, double u1, double u2, LightSample& out,
+    // is self's unit normal on the side p looks from (zero if unknown). u1 both picks the light,
+    // in proportion to its power, and places the point on it.
+    bool sample(const Vec3& p, uint32_t self, double u1, double u2, LightSample& out,
                 const Vec3& facing = Vec3{}) const;
     // The solid-angle density with which sample() would have produced `hit` seen from p.
     double pdf(const Vec3& p, uint32_t self, const SurfaceInteraction& hit, const Vec3& facing = Vec3{}) const;

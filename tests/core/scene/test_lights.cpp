@@ -33,7 +33,7 @@ Estimate irradiance_by_light_sampling(const OneLight& scene, const Vec3& p, cons
     for (int i = 0; i < count; ++i) {
         LightSample ls;
         double value = 0;
-        if (scene.lights.sample(p, kNoPrimitive, rng.uniform(), rng.uniform(), rng.uniform(), ls)) {
+        if (scene.lights.sample(p, kNoPrimitive, rng.uniform(), rng.uniform(), ls)) {
             EXPECT_TRUE(std::isfinite(ls.pdf) && ls.pdf > 0);
             value = ls.emission.x * std::max(0.0, dot(ls.wi, n)) / ls.pdf;
         }
@@ -42,6 +42,21 @@ Estimate irradiance_by_light_sampling(const OneLight& scene, const Vec3& p, cons
     }
     const double mean = sum / count;
     return {mean, std::sqrt(std::max(0.0, sum_sq / count - mean * mean) / count)};
+}
+
+// A quad light of two triangles fed a stratified 16×16 grid of (u1, u2): u1 both picks the
+// triangle and places the point, so each triangle gets exactly its half of the strata. A
+// separate random pick would hand each a random share (binomial: 128 ± 8).
+TEST(LightSet, AStratifiedLightSampleStaysStratifiedOverEveryTriangleOfAQuad) {
+    const OneLight quad({}, {{{0, 1, 0}, {1, 1, 0}, {1, 1, 1}}, {{0, 1, 0}, {1, 1, 1}, {0, 1, 1}}}, 1);
+    int on_first = 0;
+    for (int i = 0; i < 16; ++i)
+        for (int j = 0; j < 16; ++j) {
+            LightSample ls;
+            ASSERT_TRUE(quad.lights.sample({0.5, 0, 0.5}, kNoPrimitive, (i + 0.5) / 16, (j + 0.5) / 16, ls));
+            on_first += ls.prim == 0;
+        }
+    EXPECT_EQ(on_first, 128);
 }
 
 // The same by brute force: cosine-weighted directions, π·L times the fraction that hit.
@@ -70,7 +85,7 @@ TEST(Lights, TinyFarSpheresHaveFinitePdfsAndExactIrradiance) {
         Rng rng(23, 0, 0);
         for (int i = 0; i < 1000; ++i) {
             LightSample ls;
-            ASSERT_TRUE(scene.lights.sample({0, 0, 0}, kNoPrimitive, rng.uniform(), rng.uniform(), rng.uniform(), ls));
+            ASSERT_TRUE(scene.lights.sample({0, 0, 0}, kNoPrimitive, rng.uniform(), rng.uniform(), ls));
             Hit hit;
             ASSERT_TRUE(scene.geometry.intersect(Ray{{0, 0, 0}, ls.wi}, kNoPrimitive, hit));
             EXPECT_NEAR(hit.t, ls.distance, 1e-9 * distance);
@@ -95,7 +110,7 @@ TEST(Lights, PdfOfASampledPointEqualsTheSamplesPdf) {
     for (const Vec3& p : {Vec3{0, 0, 0}, Vec3{0, 5, 0.2}}) {  // outside all, and inside the first sphere
         for (int i = 0; i < 3000; ++i) {
             LightSample ls;
-            if (!scene.lights.sample(p, kNoPrimitive, rng.uniform(), rng.uniform(), rng.uniform(), ls)) continue;
+            if (!scene.lights.sample(p, kNoPrimitive, rng.uniform(), rng.uniform(), ls)) continue;
             const Ray ray{p, ls.wi, 0, ls.distance * (1 + 1e-9)};
             Hit hit;
             ASSERT_TRUE(scene.geometry.intersect(ray, kNoPrimitive, hit));
@@ -114,7 +129,7 @@ TEST(Lights, PickingFollowsPower) {
     const int n = 100000;
     for (int i = 0; i < n; ++i) {
         LightSample ls;
-        ASSERT_TRUE(scene.lights.sample({0, 0, 0}, kNoPrimitive, rng.uniform(), rng.uniform(), rng.uniform(), ls));
+        ASSERT_TRUE(scene.lights.sample({0, 0, 0}, kNoPrimitive, rng.uniform(), rng.uniform(), ls));
         first += ls.prim == 0;
     }
     EXPECT_NEAR(double(first) / n, 0.2, 3 * std::sqrt(0.2 * 0.8 / n));
@@ -152,7 +167,7 @@ Direct direct_by_light_sampling(const Geometry& geometry, const LightSet& lights
     for (int i = 0; i < count; ++i) {
         LightSample ls;
         double value = 0;
-        if (lights.sample(p, self, rng.uniform(), rng.uniform(), rng.uniform(), ls, facing)) {
+        if (lights.sample(p, self, rng.uniform(), rng.uniform(), ls, facing)) {
             Ray shadow{p, ls.wi, 0, ls.distance};
             if (!geometry.occluded(shadow, self, ls.prim)) {
                 ++sampled;
