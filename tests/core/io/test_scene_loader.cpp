@@ -5,6 +5,10 @@
 #include <filesystem>
 #include <fstream>
 
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+
 #include "base/files.h"
 #include "io/scene_loader.h"
 
@@ -45,11 +49,26 @@ TEST(SceneLoader, LoadsSmallptsCornellBox) {
     EXPECT_EQ(s.scene->camera().near, 140);
 }
 
-TEST(SceneLoader, ExampleScenesAllLoad) {
-    for (const auto& entry : std::filesystem::directory_iterator(GLINT_SCENES_DIR))
-        if (entry.path().extension() == ".json") {
-            EXPECT_NO_THROW(load_scene(entry.path())) << entry.path();
+// Every example scene loads without a warning (the public meshes some of them use may be
+// missing: scenes/meshes/fetch.sh puts them in place; such scenes are left out, and said).
+TEST(SceneLoader, ExampleScenesAllLoadWithoutWarnings) {
+    for (const auto& entry : std::filesystem::directory_iterator(GLINT_SCENES_DIR)) {
+        if (entry.path().extension() != ".json" || entry.path().filename().string()[0] == '.') continue;
+        const std::vector<uint8_t> bytes = read_file(entry.path().string(), 1 << 20);
+        const auto scene = nlohmann::json::parse(bytes.begin(), bytes.end());
+        bool missing = false;
+        for (const auto& object : scene.value("objects", nlohmann::json::array()))
+            missing |= object.contains("file") && !std::filesystem::exists(entry.path().parent_path() / object["file"]);
+        if (missing) {
+            std::printf("%s: a mesh is missing (scenes/meshes/fetch.sh): not loaded\n", entry.path().c_str());
+            continue;
         }
+        try {
+            EXPECT_TRUE(load_scene(entry.path()).warnings.empty()) << entry.path();
+        } catch (const SceneError& e) {
+            ADD_FAILURE() << entry.path() << ": " << e.what();
+        }
+    }
 }
 
 TEST(SceneLoader, ErrorsNameTheJsonPath) {
