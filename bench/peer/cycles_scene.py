@@ -11,7 +11,8 @@ radiance, a black world, a pinhole camera with glint's vertical field of view an
 filter of width 1 (glint's film.filter "box"). No clamping, denoising, adaptive sampling or light
 threshold; caustics on; 128 bounces of every kind. For each (spp, seed) it writes PREFIX_SPP_SEED.pfm
 (linear RGB) and one JSON line to PREFIX.jsonl with the render's CPU seconds (the process's user +
-sys over the render call, all threads) and wall seconds.
+sys over the render call, all threads, Cycles' scene sync and BVH build included), its wall
+seconds, and the seconds this script took to build the scene in Blender before (`import`).
 """
 import argparse
 import json
@@ -241,11 +242,13 @@ def main():
     with open(a.scene) as f:
         glint_scene = json.load(f)
     bpy.ops.wm.read_factory_settings(use_empty=True)
+    imported = time.perf_counter()
     scene = bpy.context.scene
     configure(scene, a.width, a.height)
     for i, obj in enumerate(glint_scene.get("objects", [])):
         add_mesh(i, obj, os.path.dirname(os.path.abspath(a.scene)))
     add_camera(glint_scene.get("camera", {}))
+    imported = time.perf_counter() - imported
     with open(a.out + ".jsonl", "a") as log:
         for spp in [int(s) for s in a.spp.split(",")]:
             for seed in [int(s) for s in a.seeds.split(",")]:
@@ -257,7 +260,7 @@ def main():
                 exr = f"{a.out}_{spp}_{seed}.exr"
                 bpy.data.images["Render Result"].save_render(exr)
                 write_pfm(f"{a.out}_{spp}_{seed}.pfm", exr)
-                log.write(json.dumps({"spp": spp, "seed": seed, "cpu": cpu, "wall": wall}) + "\n")
+                log.write(json.dumps({"spp": spp, "seed": seed, "cpu": cpu, "wall": wall, "import": imported}) + "\n")
                 log.flush()
 
 

@@ -8,7 +8,8 @@ Cycles"; the scene translation is bench/peer/cycles_scene.py.)
 
 Installs Blender from Debian when it is missing (about 400 MB: never in CI). Both renderers run
 at 2 threads with a box pixel filter of width 1. For each scene and renderer: a ladder of renders
-(one per spp) and a reference made of two renders with other seeds. A renderer's error is measured
+(one per spp) and a reference made of two renders with other seeds; each render by glint is
+followed at once by the same by Cycles. A renderer's error is measured
 against its own reference, and the reference's own noise, (A - B)²/4 from its two halves, is taken
 off, so that neither is charged for the other's conventions; whether the two references agree is
 reported beside it. CPU seconds are the process's user + sys over the render (Cycles: the render
@@ -74,31 +75,33 @@ def timed(command):
     return after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime, wall
 
 
-def run_glint(scene, out, a, jobs):
-    """jobs: [(spp, seed)] -> {(spp, seed): (image, cpu, wall)}."""
-    results = {}
-    for spp, seed in jobs:
-        pfm = f"{out}_{spp}_{seed}.pfm"
-        cpu, wall = timed([GLINT, "render", scene, "-o", pfm[:-4] + ".png", "--hdr", pfm, "--width", str(a.width),
-                           "--height", str(a.height), "--spp", str(spp), "--seed", str(seed), "--threads", "2"])
-        results[(spp, seed)] = (read_pfm(pfm), cpu, wall)
-    return results
+def run_glint(scene, out, a, spp, seed):
+    """One render: (image, cpu, wall)."""
+    pfm = f"{out}_{spp}_{seed}.pfm"
+    cpu, wall = timed([GLINT, "render", scene, "-o", pfm[:-4] + ".png", "--hdr", pfm, "--width", str(a.width),
+                       "--height", str(a.height), "--spp", str(spp), "--seed", str(seed), "--threads", "2"])
+    return read_pfm(pfm), cpu, wall
 
 
-def run_cycles(scene, out, a, jobs):
-    if os.path.exists(out + ".jsonl"):
-        os.remove(out + ".jsonl")
-    for spp, seed in jobs:  # one Blender per render keeps each timing alone in its process
-        subprocess.run(["blender", "-b", "--factory-startup", "-noaudio", "-t", "2", "--python",
-                        os.path.join(ROOT, "bench", "peer", "cycles_scene.py"), "--", scene, "--width", str(a.width),
-                        "--height", str(a.height), "--spp", str(spp), "--seeds", str(seed), "--out", out],
-                       check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    results = {}
+def run_cycles(scene, out, a, spp, seed):
+    """One render in a Blender of its own, so that each timing is alone in its process."""
+    subprocess.run(["blender", "-b", "--factory-startup", "-noaudio", "-t", "2", "--python",
+                    os.path.join(ROOT, "bench", "peer", "cycles_scene.py"), "--", scene, "--width", str(a.width),
+                    "--height", str(a.height), "--spp", str(spp), "--seeds", str(seed), "--out", out],
+                   check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     with open(out + ".jsonl") as f:
-        for line in f:
-            r = json.loads(line)
-            results[(r["spp"], r["seed"])] = (read_pfm(f"{out}_{r['spp']}_{r['seed']}.pfm"), r["cpu"], r["wall"])
-    return results
+        r = json.loads(f.readlines()[-1])
+    return read_pfm(f"{out}_{spp}_{seed}.pfm"), r["cpu"], r["wall"]
+
+
+def run_both(scene, out, a, jobs):
+    """Each job by glint, then at once by Cycles: the machine's speed drifts by 10-20% over
+    minutes, and renders side by side see the same machine."""
+    glint, cycles = {}, {}
+    for spp, seed in jobs:
+        glint[(spp, seed)] = run_glint(scene, out + "_glint", a, spp, seed)
+        cycles[(spp, seed)] = run_cycles(scene, out + "_cycles", a, spp, seed)
+    return glint, cycles
 
 
 def measure(results, a):
@@ -180,8 +183,7 @@ def main():
     for name in a.scenes.split(","):
         copy = box_filter_copy(name)
         try:
-            g = run_glint(copy, os.path.join(a.out, f"{name}_glint"), a, jobs)
-            c = run_cycles(copy, os.path.join(a.out, f"{name}_cycles"), a, jobs)
+            g, c = run_both(copy, os.path.join(a.out, name), a, jobs)
         finally:
             os.remove(copy)
         summary, g_rows, c_rows = compare(name, g, c, a)
