@@ -4,8 +4,8 @@
 
   /usr/bin/python3 bench/peer/first_pixel.py [--segments 8192 --sides 64] [--runs 3]
 
-Writes a torus knot of segments × sides × 2 triangles (8192 × 64 × 2 = 1,048,576) into a
-temporary scene folder, lit and framed as scenes/mesh.json, and renders one sample per pixel at
+Writes a torus knot of segments × sides × 2 triangles (8192 × 64 × 2 = 1,048,576; made as
+scenes/meshes/make_torus_knot.py makes scenes/mesh.json's) into a temporary scene folder, lit and framed as scenes/mesh.json, and renders one sample per pixel at
 256×192 with 2 threads. glint: the whole `glint render` command (OBJ parse, BVH build, one pass,
 PNG), and the same at 1×1 pixel, which is load and build alone. Cycles: the render call (scene
 sync and BVH build, then one sample), beside the time cycles_scene.py took to hand Blender the
@@ -13,57 +13,17 @@ mesh. Medians of --runs, wall seconds, and CPU seconds (user + sys).
 """
 import argparse
 import json
-import math
 import os
-import resource
 import shutil
 import statistics
 import subprocess
+import sys
 import tempfile
-import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-GLINT = os.path.join(ROOT, "build", "server", "glint")
+from run_cycles import GLINT, ROOT, timed_wall_first as timed
 
-
-def write_knot(path, segments, sides, tube=0.28):
-    """A (2,3) torus knot swept by a circle, as scenes/meshes/make_torus_knot.py makes it."""
-    def knot(t):
-        r = 2 + math.cos(3 * t)
-        return (r * math.cos(2 * t), r * math.sin(2 * t), -math.sin(3 * t))
-
-    def unit(a):
-        n = math.sqrt(sum(x * x for x in a))
-        return tuple(x / n for x in a)
-
-    with open(path, "w") as f:
-        for i in range(segments):
-            t = 2 * math.pi * i / segments
-            c, ahead = knot(t), knot(t + 1e-4)
-            tangent = unit(tuple(a - b for a, b in zip(ahead, c)))
-            normal = unit((tangent[1], -tangent[0], 0))
-            binormal = (tangent[1] * normal[2] - tangent[2] * normal[1], tangent[2] * normal[0] - tangent[0] * normal[2],
-                        tangent[0] * normal[1] - tangent[1] * normal[0])
-            for j in range(sides):
-                a = 2 * math.pi * j / sides
-                p = [c[k] + tube * (math.cos(a) * normal[k] + math.sin(a) * binormal[k]) for k in range(3)]
-                f.write(f"v {p[0]:.6f} {p[1]:.6f} {p[2]:.6f}\n")
-        for i in range(segments):
-            for j in range(sides):
-                a = i * sides + j + 1
-                b = ((i + 1) % segments) * sides + j + 1
-                c = ((i + 1) % segments) * sides + (j + 1) % sides + 1
-                d = i * sides + (j + 1) % sides + 1
-                f.write(f"f {a} {b} {c}\nf {a} {c} {d}\n")
-
-
-def timed(command):
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    start = time.perf_counter()
-    subprocess.run(command, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    wall = time.perf_counter() - start
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return wall, after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime
+sys.path.insert(0, os.path.join(ROOT, "scenes", "meshes"))
+import make_torus_knot  # noqa: E402  (found through the path above)
 
 
 def main():
@@ -75,7 +35,8 @@ def main():
     folder = tempfile.mkdtemp(prefix="glint-first-pixel-")
     try:
         os.makedirs(os.path.join(folder, "meshes"))
-        write_knot(os.path.join(folder, "meshes", "knot.obj"), a.segments, a.sides)
+        with open(os.path.join(folder, "meshes", "knot.obj"), "w") as f:
+            make_torus_knot.write(f, a.segments, a.sides)
         with open(os.path.join(ROOT, "scenes", "mesh.json")) as f:
             scene = json.load(f)
         scene["objects"][0]["file"] = "meshes/knot.obj"
