@@ -75,12 +75,6 @@ def timed(command):
     return after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime, wall
 
 
-def timed_wall_first(command):
-    """timed(), as (wall, CPU)."""
-    cpu, wall = timed(command)
-    return wall, cpu
-
-
 def run_glint(scene, out, a, spp, seed):
     """One render: (image, cpu, wall)."""
     pfm = f"{out}_{spp}_{seed}.pfm"

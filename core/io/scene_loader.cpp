@@ -231,6 +231,8 @@ private:
         return m;
     }
 
+    static bool has_own_material(const At& object) { return object.has("material") || object.has("emission"); }
+
     // An object's own `material` and `emission`.
     static Material object_material(const At& object) {
         Material m;
@@ -260,8 +262,7 @@ private:
             if (at.has("vertices") || at.has("indices")) at.fail("give either file or vertices and indices, not both");
             // The object's own material replaces the library's, which is then read only for
             // the names `materials` overrides.
-            const bool own = at.has("material") || at.has("emission");
-            mesh = load_mesh_file(at["file"], !own || at.has("materials"));
+            mesh = load_mesh_file(at["file"], !has_own_material(at) || at.has("materials"));
         } else {
             if (!at.has("vertices") || !at.has("indices")) at.fail("a mesh needs a \"file\", or \"vertices\" and \"indices\"");
             if (at.has("materials")) at["materials"].fail("only a mesh file's materials can be overridden by name");
@@ -295,7 +296,7 @@ private:
             material_of_prim_.insert(material_of_prim_.end(), mesh.triangles.size(), fallback);
             return;
         }
-        const bool replaced = at.has("material") || at.has("emission");
+        const bool replaced = has_own_material(at);
         std::vector<Material> library;
         for (const ObjMaterial& m : mesh.materials) library.push_back(replaced ? own : m.material);
         if (at.has("materials")) override_by_name(at["materials"], mesh.materials, library);

@@ -107,8 +107,8 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u1, double u2, LightS
     // u1 picks the light and, stretched over the light's own share of [0, 1), places the point on
     // it: stratified (u1, u2) stay stratified over every light, where a separate random pick
     // would hand each triangle of a quad a random half of the strata.
-    const double below = index == 0 ? 0 : cdf_[index - 1];
-    u1 = std::clamp((u1 - below) / (cdf_[index] - below), 0.0, kOneMinusEpsilon);
+    const double below = index == 0 ? 0 : cdf_[index - 1], share = cdf_[index] - below;  // pick_probability
+    u1 = std::clamp((u1 - below) / share, 0.0, kOneMinusEpsilon);
     const Light& light = lights_[index];
     out.prim = light.prim;
     out.emission = light.emission;
@@ -145,7 +145,7 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u1, double u2, LightS
         const Vec3 q = t.v0 * b.x + t.v1 * b.y + t.v2 * b.z;
         pdf = toward(p, q, normalize(t.unnormalized_normal()), t.area(), out);
     }
-    out.pdf = pdf * pick_probability(index);
+    out.pdf = pdf * share;
     return out.pdf > 0 && std::isfinite(out.pdf) && out.distance > 0;
 }
 

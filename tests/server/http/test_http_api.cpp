@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "http/job_view.h"
 #include "http/render_server.h"
 #include "support/raw_http.h"
 #include "support/test_support.h"
@@ -279,6 +280,20 @@ TEST_F(Server, ServesTheWebPage) {
     EXPECT_EQ(res->status, 200);
     EXPECT_NE(res->body.find("<title>glint</title>"), std::string::npos);
     EXPECT_EQ(client_->Get("/../CMakeLists.txt")->status, 403);  // see test_guarded_server.cpp
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// A scene's warnings (an OBJ material's texture, ...) travel with its job into every status.
+TEST(JobView, TheStatusCarriesTheScenesWarnings) {
+    LoadedScene scene = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    EXPECT_FALSE(job_status(Job("a", scene)).contains("warnings"));
+    scene.warnings = {"objects[0].file: material \"paint\": ignored texture map_Kd wood.png"};
+    EXPECT_EQ(job_status(Job("b", scene))["warnings"], nlohmann::json(scene.warnings));
 }
 
 }  // namespace
