@@ -3,12 +3,14 @@
 #include <map>
 
 #include "cli/commands.h"
+#include "cli/huge_pages.h"
 
 int main(int argc, char** argv) {
     if (!__builtin_cpu_supports("avx2") || !__builtin_cpu_supports("fma")) {  // built with -mavx2 -mfma (see CMakeLists.txt)
         std::fprintf(stderr, "glint: this processor lacks AVX2 or FMA, which this build of glint needs\n");
         return 1;
     }
+    glint::request_huge_pages(argv);
     CLI::App app{"glint: a path-tracing renderer"};
     app.require_subcommand(1);
     const std::map<std::string, std::function<int()>> commands = {

@@ -78,5 +78,24 @@ if [ -f "$shared/rays/cornell_box_primary.rays" ]; then
   check "trace-rays writes 16 + 8·N bytes" test "$(stat -c %s "$work/hits.hits")" -eq $((16 + 8 * 65536))
 fi
 
+# glint asks glibc for transparent huge pages by running itself again with GLIBC_TUNABLES set
+# (cli/huge_pages.h), unless the user set that variable. A server stays up long enough to look at
+# the environment it runs with.
+environment_of_server() {  # GLIBC_TUNABLES for the server, or unset; prints its environment
+  local port pid environment=""
+  port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])')
+  env "$@" "$glint" serve --port "$port" --threads 1 > /dev/null 2>&1 &
+  pid=$!
+  for _ in $(seq 50); do  # until it listens: the re-execution happens before that
+    python3 -c "import socket, sys; socket.create_connection(('127.0.0.1', $port), 0.2)" 2> /dev/null && break
+    sleep 0.1
+  done
+  environment=$(tr '\0' '\n' < "/proc/$pid/environ")
+  kill "$pid"; wait "$pid" 2> /dev/null
+  printf '%s\n' "$environment"
+}
+check "glint runs with glibc's huge pages" bash -c "grep -qx 'GLIBC_TUNABLES=glibc.malloc.hugetlb=1' <<< '$(environment_of_server -u GLIBC_TUNABLES)'"
+check "a GLIBC_TUNABLES the user set is left alone" bash -c "grep -qx 'GLIBC_TUNABLES=glibc.malloc.check=0' <<< '$(environment_of_server GLIBC_TUNABLES=glibc.malloc.check=0)'"
+
 echo "cli: $passes passed, $failures failed"
 exit $((failures > 0))
