@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <numeric>
+#include <thread>
 #include <utility>
 
 namespace glint {
@@ -30,6 +33,11 @@ static_assert(kTraversalCost < BinaryTree::kMaxLeafSize + 1, "a leaf made for it
 // Below this depth SAH decides; deeper, splits fall back to the median so the tree's depth
 // (and so the traversal stack) stays bounded whatever the input.
 constexpr int kSahDepth = 64;
+// A parallel build (SahBuildConfig) leaves subtrees of at most a kSubtreeShare-th of the
+// primitives to the threads. The top, built by one thread first, bins every primitive at each of
+// its levels: a share of 8 leaves it three or four levels, and a dozen or more subtrees to share
+// out between a few cores.
+constexpr uint32_t kSubtreeShare = 8;
 
 // A box in one SSE register per corner (x, y, z, unused): growing it is two instructions, which
 // is what binning does most. Float boxes rounded outward lose nothing the tree needs.
@@ -129,23 +137,32 @@ struct Split {
 // capacity's end, which splits by a plane fill with the references they add; each split shares
 // the free slots out between the children in proportion to their sizes (without a
 // ReferenceSplitter there are none).
+//
+// A parallel build leaves the subtrees of at most a kSubtreeShare-th of the primitives as tasks;
+// threads then build each into a node array of its own, over its own range of prims_, and the
+// arrays are appended in the order of the tasks. The tree is the one a single thread builds (each
+// node's split depends on its primitives alone), only numbered otherwise, and collapse_to_wide()
+// numbers the wide tree from the structure alone.
 class Builder {
 public:
-    Builder(std::vector<BuildPrim> prims, const ReferenceSplitter* splitter)
-        : prims_(std::move(prims)), splitter_(splitter), traversal_cost_(splitter ? splitter->traversal_cost() : kTraversalCost) {}
+    Builder(std::vector<BuildPrim>& prims, const ReferenceSplitter* splitter, std::vector<BinaryNode>& nodes)
+        : prims_(prims), splitter_(splitter), traversal_cost_(splitter ? splitter->traversal_cost() : kTraversalCost),
+          nodes_(&nodes) {}
 
-    BinaryTree run() {
+    BinaryTree run(const SahBuildConfig& config) {
         const auto n = static_cast<uint32_t>(prims_.size());
         const auto capacity = splitter_ ? n + static_cast<uint32_t>(splitter_->budget() * n) : n;
-        BinaryTree tree;
-        tree.nodes.reserve(2 * capacity);
-        tree.nodes.push_back({});
-        nodes_ = &tree.nodes;
+        nodes_->reserve(2 * capacity);
+        nodes_->push_back({});
         prims_.resize(capacity);
         const Extent root = extent_of(0, n);
         root_area_ = root.bounds.half_area();
+        if (!splitter_ && n >= config.parallel_from) largest_task_ = n / kSubtreeShare;
         build(0, {0, n, capacity, root}, 0);
-        tree.order = compact(tree.nodes);
+        build_tasks(config.threads ? config.threads : std::max(1u, std::thread::hardware_concurrency()));
+        BinaryTree tree;
+        tree.order = compact(*nodes_);
+        tree.nodes = std::move(*nodes_);
         return tree;
     }
 
@@ -199,11 +216,58 @@ private:
         uint32_t begin, end, capacity_end;
         Extent extent;
     };
+    // A subtree left for the workers: the node it fills and what to build there.
+    struct Task {
+        uint32_t node;
+        Child child;
+        int depth;
+    };
+
+    // Builds the tasks on `threads` threads, largest first, then appends their nodes to the tree.
+    void build_tasks(unsigned threads) {
+        if (tasks_.empty()) return;
+        std::vector<std::vector<BinaryNode>> subtrees(tasks_.size());
+        std::vector<uint32_t> by_size(tasks_.size());
+        std::iota(by_size.begin(), by_size.end(), 0u);
+        std::stable_sort(by_size.begin(), by_size.end(), [&](uint32_t a, uint32_t b) { return size_of(a) > size_of(b); });
+        std::atomic<size_t> next{0};
+        const auto work = [&] {
+            for (size_t i; (i = next.fetch_add(1)) < by_size.size();) {
+                const Task& task = tasks_[by_size[i]];
+                std::vector<BinaryNode>& nodes = subtrees[by_size[i]];
+                nodes.reserve(2 * size_t{task.child.end - task.child.begin});
+                nodes.push_back({});
+                Builder(prims_, splitter_, nodes).build(0, task.child, task.depth);
+            }
+        };
+        {
+            std::vector<std::jthread> workers(std::min<size_t>(tasks_.size(), threads) - 1);
+            for (std::jthread& worker : workers) worker = std::jthread(work);
+            work();
+        }
+        for (size_t t = 0; t < tasks_.size(); ++t) append(tasks_[t].node, subtrees[t]);
+    }
+
+    uint32_t size_of(uint32_t task) const { return tasks_[task].child.end - tasks_[task].child.begin; }
+
+    // Puts a subtree's root in `node` and its other nodes at the end of the tree, renumbered.
+    void append(uint32_t node, const std::vector<BinaryNode>& subtree) {
+        const auto base = static_cast<uint32_t>(nodes_->size()) - 1;  // where subtree node 1 goes
+        for (size_t i = 0; i < subtree.size(); ++i) {
+            BinaryNode copy = subtree[i];
+            if (!copy.is_leaf()) copy.first += base;  // children are never the subtree's root
+            if (i == 0)
+                (*nodes_)[node] = copy;
+            else
+                nodes_->push_back(copy);
+        }
+    }
 
     void build(uint32_t node, const Child& child, int depth) {
         const auto [begin, end, capacity_end, extent] = child;
-        (*nodes_)[node].box = extent.bounds.to_float_box();
         const uint32_t count = end - begin;
+        if (count <= largest_task_) return tasks_.push_back({node, child, depth});
+        (*nodes_)[node].box = extent.bounds.to_float_box();
         const float leaf_cost = float(count);
         // A split costs at least the traversal step: a node of no more primitives than that is a
         // leaf without a look at its bins.
@@ -428,19 +492,22 @@ private:
         return mid;
     }
 
-    std::vector<BuildPrim> prims_;
+    std::vector<BuildPrim>& prims_;
     const ReferenceSplitter* splitter_;
     const float traversal_cost_;  // of one step down, relative to one primitive test
     float root_area_ = 0;
     std::vector<BuildPrim> left_, right_;  // a split by a plane: its children, before they are stored
     std::vector<Bounds3> boxes_;           // and the node's references, for the splitter
     std::vector<uint32_t> prim_ids_;
-    std::vector<BinaryNode>* nodes_ = nullptr;
+    std::vector<BinaryNode>* nodes_;
+    uint32_t largest_task_ = 0;  // subtrees of at most this many primitives are left as tasks
+    std::vector<Task> tasks_;
 };
 
 }  // namespace
 
-BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter) {
+BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter,
+                          const SahBuildConfig& config) {
     std::vector<BuildPrim> prims;
     prims.reserve(prim_bounds.size());
     for (uint32_t i = 0; i < prim_bounds.size(); ++i) {
@@ -453,7 +520,8 @@ BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const ReferenceS
         p.index = i;
     }
     if (prims.empty()) return {};
-    return Builder(std::move(prims), splitter).run();
+    std::vector<BinaryNode> nodes;
+    return Builder(prims, splitter, nodes).run(config);
 }
 
 }  // namespace glint

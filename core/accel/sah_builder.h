@@ -58,7 +58,19 @@ public:
     virtual Bounds3 part(uint32_t prim, const Bounds3& box) const = 0;
 };
 
+// How build_sah_tree uses the processor's cores; the defaults are the renderer's.
+struct SahBuildConfig {
+    // Inputs of at least this many primitives are built on several threads (without a
+    // ReferenceSplitter): their top first, down to subtrees of at most an eighth of the
+    // primitives, then the subtrees at once. The tree is the same as one thread's, numbered
+    // otherwise: collapse_to_wide() makes the same wide tree of both.
+    uint32_t parallel_from = 1 << 16;
+    // Threads for those subtrees; 0: one per hardware thread.
+    unsigned threads = 0;
+};
+
 // Primitives with empty boxes are left out. `splitter`, if given, may also split by planes.
-BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter = nullptr);
+BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter = nullptr,
+                          const SahBuildConfig& config = {});
 
 }  // namespace glint

@@ -6,6 +6,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "accel/bvh_collapse.h"
 #include "scene/geometry.h"
@@ -400,6 +401,27 @@ TEST(Bvh, CollapseMergesLeavesWhereThatCostsLess) {
     EXPECT_EQ(root.child[1], ChildRef::leaf(2, 1));
     EXPECT_EQ(root.child[2], ChildRef::leaf(3, 1));
     for (int slot = 3; slot < kBvhWidth; ++slot) EXPECT_FALSE(root.used(slot));
+}
+
+// A large input's tree is built on several threads; the wide tree made of it must be the one
+// made of a single thread's build, node for node, whatever the number of threads.
+TEST(Bvh, ParallelBuildMakesTheSingleThreadedTree) {
+    Rng rng(29, 0, 0);
+    std::vector<Bounds3> boxes;
+    for (int i = 0; i < 20000; ++i) {
+        const Vec3 p{rng.uniform() * 100, rng.uniform() * 10, rng.uniform()}, size{rng.uniform(), rng.uniform(), rng.uniform()};
+        boxes.push_back({p, p + size});
+    }
+    const BinaryTree single = build_sah_tree(boxes, nullptr, {.parallel_from = UINT32_MAX});
+    const std::vector<BvhNode> wide = collapse_to_wide(single.nodes);
+    for (unsigned threads : {1u, 2u, 7u}) {
+        const BinaryTree parallel = build_sah_tree(boxes, nullptr, {.parallel_from = 1000, .threads = threads});
+        EXPECT_NE(parallel.nodes.size(), 0u);
+        EXPECT_EQ(parallel.order, single.order) << threads << " threads";
+        const std::vector<BvhNode> parallel_wide = collapse_to_wide(parallel.nodes);
+        ASSERT_EQ(parallel_wide.size(), wide.size()) << threads << " threads";
+        EXPECT_EQ(std::memcmp(parallel_wide.data(), wide.data(), wide.size() * sizeof(BvhNode)), 0) << threads << " threads";
+    }
 }
 
 TEST(Bvh, CoincidentPrimitivesStillBuildAShallowTree) {
