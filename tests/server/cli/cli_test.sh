@@ -48,7 +48,7 @@ check "a batch ends with a summary" grep -q "^3 scenes: 2 rendered, 1 failed$" "
 check "a batch prints one line per scene" test "$(grep -c "completed;" "$work/stdout")" -eq 2
 
 # One job split over three processes running at once, merged: the whole render's image.
-ranges=$(for i in 0 1 2; do "$source/docker/k8s/sample-range" $i 3 40; done | tr '\n' ' ')
+ranges=$(for i in 0 1 2; do "$source/docker/sample-range" $i 3 40; done | tr '\n' ' ')
 check "sample-range tiles 40 spp in 3 parts of whole rounds" test "$ranges" = "0:12 12:24 24:40 "
 for r in $ranges; do
   "$glint" render "$work/tiny.json" --samples "$r" --partial "$work/part-$r" --spp 999 2>/dev/null >/dev/null &
@@ -64,7 +64,7 @@ check "merge refuses a gap" grep -q "samples \[12, 24) are missing" "$work/stder
 for parts in 1 2 3 5 7 10; do
   covered=0 ok=1
   for i in $(seq 0 $((parts - 1))); do
-    r=$("$source/docker/k8s/sample-range" "$i" "$parts" 37)
+    r=$("$source/docker/sample-range" "$i" "$parts" 37)
     [ "${r%%:*}" -eq "$covered" ] || ok=0
     covered=${r##*:}
   done
