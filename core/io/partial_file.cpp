@@ -1,5 +1,7 @@
 #include "io/partial_file.h"
 
+#include <stdexcept>
+
 #include <algorithm>
 #include <bit>
 #include <cstring>
@@ -150,6 +152,19 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
         px.splats_dropped = r.get<uint64_t>();
     }
     return p;
+}
+
+void check_continues(const Partial& checkpoint, uint64_t fingerprint, const RenderSettings& settings) {
+    if (checkpoint.fingerprint != fingerprint)
+        throw std::invalid_argument("it is from another scene or settings (fingerprint differs)");
+    if (checkpoint.sampler_version != kSamplerVersion)
+        throw std::invalid_argument("it was rendered by another version of glint's sampler (" +
+                                    std::to_string(checkpoint.sampler_version) + ", not " +
+                                    std::to_string(kSamplerVersion) + ")");
+    if (checkpoint.encoding != settings.encoding) throw std::invalid_argument("its PNG encoding differs from the job's");
+    if (checkpoint.first_sample != settings.first_sample)
+        throw std::invalid_argument("it starts at sample " + std::to_string(checkpoint.first_sample) + ", the job at " +
+                                    std::to_string(settings.first_sample));
 }
 
 Partial merge_partials(std::vector<Partial> parts) {

@@ -51,6 +51,11 @@ std::vector<uint8_t> encode_partial(const Partial& partial);
 uint64_t partial_file_size(int width, int height);
 Partial decode_partial(const std::vector<uint8_t>& bytes);  // throws PartialError
 
+// Checks that `checkpoint` may continue the job of `fingerprint` and `settings`: same scene and
+// settings, sampler version, encoding and first sample (RenderJob::resume then checks its size and
+// sample count). Throws std::invalid_argument saying what differs.
+void check_continues(const Partial& checkpoint, uint64_t fingerprint, const RenderSettings& settings);
+
 // Combines parts of one job: same fingerprint, sampler version and size, sample ranges that
 // neither overlap nor leave gaps (in any order given). Sums are added in order of the ranges. Throws PartialError.
 Partial merge_partials(std::vector<Partial> parts);

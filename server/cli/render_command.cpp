@@ -1,6 +1,7 @@
 // `glint render`: scene files to PNG (and optionally PFM), or one scene's sample range to a
 // partial file, with progress on the terminal. Ctrl-C stops the render and still writes the
 // image rendered so far.
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -22,7 +23,8 @@ namespace {
 
 struct RenderOptions {
     std::vector<std::string> scenes;
-    std::string output, hdr, samples, partial;
+    std::string output, hdr, samples, partial, checkpoint;
+    double checkpoint_interval = 5;
     std::optional<uint32_t> spp;
     std::optional<int> width, height;
     std::optional<uint64_t> seed;
@@ -33,7 +35,7 @@ struct RenderOptions {
 
 // Where one scene's results go.
 struct Outputs {
-    std::string png, hdr, partial;
+    std::string png, hdr, partial, checkpoint;
 };
 
 RenderJob* g_interruptible = nullptr;
@@ -77,6 +79,44 @@ void write_outputs(const RenderJob& job, const LoadedScene& loaded, const Output
     write_file(out.partial, encode_partial(partial_of(job, print, job.progress().spp_done)));
 }
 
+// --checkpoint FILE: the film of the whole passes done, kept in FILE (a partial file) at pass ends
+// at most every `interval` seconds; a render that finds the file continues from it, with the
+// samples and sums an uninterrupted render would have (a killed or requeued part of a split job
+// loses only what it rendered since). Removed once a render that reached its sample count has
+// written its outputs; a render stopped short keeps the last one, taken at a pass end.
+class Checkpoint {
+public:
+    Checkpoint(std::string path, double interval, uint64_t fingerprint)
+        : path_(std::move(path)), interval_(interval), fingerprint_(fingerprint) {}
+
+    // Continues `job` from the file if there is one; throws SceneError if it cannot.
+    void resume(RenderJob& job) const {
+        if (path_.empty() || !std::filesystem::exists(path_)) return;
+        try {
+            const Partial saved = decode_partial(read_file(path_, size_t(8) << 30));
+            check_continues(saved, fingerprint_, job.settings());
+            job.resume(saved.film, saved.end_sample - saved.first_sample);
+            spdlog::info("{}: continuing from sample {}", path_, saved.end_sample);
+        } catch (const std::exception& e) {
+            throw SceneError("--checkpoint", path_ + " cannot be continued: " + e.what() + " (remove it to start over)");
+        }
+    }
+    void after_pass(const RenderJob& job) {
+        if (path_.empty() || std::chrono::steady_clock::now() - last_ < std::chrono::duration<double>(interval_)) return;
+        write_file(path_, encode_partial(partial_of(job, fingerprint_, job.progress().spp_done)));
+        last_ = std::chrono::steady_clock::now();
+    }
+    void remove() const {
+        if (!path_.empty()) std::filesystem::remove(path_);
+    }
+
+private:
+    std::string path_;
+    double interval_;
+    uint64_t fingerprint_;
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
 // Renders one scene; returns the exit status (0 done, 1 failed, 130 interrupted).
 int render_scene(const RenderOptions& o, const std::string& scene, const Outputs& out, ThreadPool& pool) {
     LoadedScene loaded;
@@ -93,13 +133,24 @@ int render_scene(const RenderOptions& o, const std::string& scene, const Outputs
                  g.sphere_count(), g.triangle_count(), g.degenerate_triangles(), loaded.scene->lights().size(),
                  loaded.settings.width, loaded.settings.height, loaded.settings.spp);
     RenderJob job(loaded.scene, loaded.settings);
+    Checkpoint checkpoint(out.checkpoint, o.checkpoint_interval, fingerprint(*loaded.scene, loaded.settings));
+    try {
+        checkpoint.resume(job);
+    } catch (const SceneError& e) {
+        std::fprintf(stderr, "glint: %s: %s\n", scene.c_str(), e.what());
+        return 1;
+    }
     ProgressBar bar(stderr);
     g_interruptible = &job;
-    const StopReason reason = job.run(pool, [&](const Progress& p) { bar.update(p); });
+    const StopReason reason = job.run(pool, [&](const Progress& p) {
+        bar.update(p);
+        checkpoint.after_pass(job);
+    });
     bar.finish();
     g_interruptible = nullptr;
     try {
         write_outputs(job, loaded, out);
+        if (reason == StopReason::completed) checkpoint.remove();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "glint: %s\n", e.what());
         return 1;
@@ -134,7 +185,7 @@ int render_batch(const RenderOptions& o, ThreadPool& pool) {
     for (const auto& scene : scenes) {
         const std::string stem = scene.stem().string();
         Outputs out{(std::filesystem::path(o.output) / (stem + ".png")).string(),
-                    o.hdr.empty() ? "" : (std::filesystem::path(o.hdr) / (stem + ".pfm")).string(), ""};
+                    o.hdr.empty() ? "" : (std::filesystem::path(o.hdr) / (stem + ".pfm")).string(), "", ""};
         const int status = render_scene(o, scene.string(), out, pool);
         if (status == 130) return 130;
         failed += status != 0;
@@ -150,8 +201,8 @@ int run_render(const RenderOptions& o) {
     sigaction(SIGINT, &action, nullptr);
     ThreadPool pool(o.threads);
     const bool batch = o.scenes.size() > 1 || std::filesystem::is_directory(o.scenes.front());
-    if (batch && (!o.samples.empty() || !o.partial.empty())) {
-        std::fprintf(stderr, "glint: --samples and --partial take a single scene file\n");
+    if (batch && (!o.samples.empty() || !o.partial.empty() || !o.checkpoint.empty())) {
+        std::fprintf(stderr, "glint: --samples, --partial and --checkpoint take a single scene file\n");
         return 2;
     }
     if (o.output.empty() && o.partial.empty()) {
@@ -159,7 +210,7 @@ int run_render(const RenderOptions& o) {
         return 2;
     }
     if (batch) return render_batch(o, pool);
-    return render_scene(o, o.scenes.front(), Outputs{o.output, o.hdr, o.partial}, pool);
+    return render_scene(o, o.scenes.front(), Outputs{o.output, o.hdr, o.partial, o.checkpoint}, pool);
 }
 
 }  // namespace
@@ -172,6 +223,10 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--hdr", o->hdr, "Also write the linear image as PFM (a folder for several scenes)");
     cmd->add_option("--samples", o->samples, "Render only samples A..B-1 of every pixel (A:B), for --partial");
     cmd->add_option("--partial", o->partial, "Write the per-pixel sums to this file, for glint merge");
+    cmd->add_option("--checkpoint", o->checkpoint,
+                    "Keep the film in this file as the render goes, and continue from it if it is there");
+    cmd->add_option("--checkpoint-interval", o->checkpoint_interval, "Seconds between checkpoints (default 5)")
+        ->check(CLI::Range(0.0, 3600.0));
     cmd->add_option("--spp", o->spp, "Samples per pixel (film.spp)");
     cmd->add_option("--width", o->width, "Image width (film.width)");
     cmd->add_option("--height", o->height, "Image height (film.height)");

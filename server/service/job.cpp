@@ -159,16 +159,7 @@ void Job::suspend() {
 }
 
 void Job::resume(const Partial& checkpoint, const Progress& saved) {
-    if (checkpoint.fingerprint != fingerprint_)
-        throw std::invalid_argument("it is from another scene or settings (fingerprint differs)");
-    if (checkpoint.sampler_version != kSamplerVersion)
-        throw std::invalid_argument("it was rendered by another version of glint's sampler (" +
-                                    std::to_string(checkpoint.sampler_version) + ", not " +
-                                    std::to_string(kSamplerVersion) + ")");
-    if (checkpoint.encoding != settings().encoding) throw std::invalid_argument("its PNG encoding differs from the job's");
-    if (checkpoint.first_sample != settings().first_sample)
-        throw std::invalid_argument("it starts at sample " + std::to_string(checkpoint.first_sample) + ", the job at " +
-                                    std::to_string(settings().first_sample));
+    check_continues(checkpoint, fingerprint_, settings());
     render_.resume(checkpoint.film, checkpoint.end_sample - checkpoint.first_sample);
     seconds_before_ = saved.seconds;
     Progress p = saved;

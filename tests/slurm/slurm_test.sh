@@ -37,12 +37,13 @@ check "(a) its parts ran on the four nodes" test "$(nodes_of "$work/a.parts")" =
 check "(a) the merged PNG equals the whole render's" cmp -s "$work/a.png" "$work/whole.png"
 check "(a) the merged PFM equals the whole render's" cmp -s "$work/a.pfm" "$work/whole.pfm"
 
-# (b) Parts of a few seconds each (256 spp); the node running part 1 is killed while it renders; Slurm finds the node down (SlurmdTimeout)
-# and requeues the part, which runs again elsewhere after cred_expire.
+# (b) Parts of a few seconds each (256 spp); the node running part 1 is killed while it renders;
+# Slurm finds the node down (SlurmdTimeout) and requeues the part, which runs again elsewhere
+# after cred_expire and continues from the checkpoint the first attempt left.
 "$glint" render "$source_dir/scenes/cornell.json" -o "$work/whole-b.png" --hdr "$work/whole-b.pfm" --spp 1024 \
   "${size[@]}" > /dev/null 2>&1
 "$submit" "$source_dir/scenes/cornell.json" -o "$work/b.png" --parts 4 --spp 1024 --glint "$glint" \
-  --wait -- "${size[@]}" > "$work/b.out" 2>&1 &
+  --wait -- "${size[@]}" --checkpoint-interval 0.2 > "$work/b.out" 2>&1 &
 submitter=$!
 victim=""
 for _ in $(seq 200); do
@@ -51,7 +52,7 @@ for _ in $(seq 200); do
   sleep 0.1
 done
 check "(b) part 1 started" test -n "$victim"
-sleep 0.5  # into its render
+for _ in $(seq 100); do [ -e "$work/b.parts/part-1.checkpoint" ] && break; sleep 0.05; done  # into its render
 check "(b) part 1 is still running when its node is killed" test ! -e "$work/b.parts/part-1.partial"
 [ -n "$victim" ] && cluster_kill_node "$work/cluster" "$victim"
 ( sleep 150; kill "$submitter" 2> /dev/null ) &
@@ -60,6 +61,8 @@ wait "$submitter"
 check "(b) the job finishes after a node died under it" test $? -eq 0
 kill "$watchdog" 2> /dev/null
 check "(b) part 1 ran twice" grep -q "^part 1: samples .* attempt 2," "$work/b.parts/part-1.log"
+check "(b) its second attempt continued from the first's checkpoint" \
+  grep -q "part-1.checkpoint: continuing from sample [1-9]" "$work/b.parts/part-1.log"
 check "(b) the merged PNG still equals the whole render's" cmp -s "$work/b.png" "$work/whole-b.png"
 check "(b) the merged PFM still equals the whole render's" cmp -s "$work/b.pfm" "$work/whole-b.pfm"
 [ -n "$victim" ] && slurmd -f "$SLURM_CONF" -N "$victim"  # back in service (ReturnToService=2)

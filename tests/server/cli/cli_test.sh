@@ -78,6 +78,26 @@ if [ -f "$shared/rays/cornell_box_primary.rays" ]; then
   check "trace-rays writes 16 + 8·N bytes" test "$(stat -c %s "$work/hits.hits")" -eq $((16 + 8 * 65536))
 fi
 
+# --checkpoint: a render stopped part-way continues from its last checkpoint to the bytes of an
+# uninterrupted one, and a completed render removes the file.
+cornell=(render "$source/scenes/cornell.json" --width 64 --height 48 --samples 0:320 --threads 1)
+"$glint" "${cornell[@]}" --partial "$work/straight.partial" > /dev/null 2>&1
+"$glint" "${cornell[@]}" --partial "$work/stopped.partial" --checkpoint "$work/ck" --checkpoint-interval 0 \
+  > /dev/null 2>&1 &
+pid=$!
+for _ in $(seq 400); do [ -e "$work/ck" ] && break; sleep 0.05; done
+kill -INT "$pid"
+wait "$pid"
+check "a render stopped part-way exits 130" test $? -eq 130
+check "and keeps its checkpoint" test -s "$work/ck"
+"$glint" "${cornell[@]}" --partial "$work/continued.partial" --checkpoint "$work/ck" > "$work/stdout" 2> /dev/null
+check "a render finding a checkpoint continues from it" grep -q "ck: continuing from sample [1-9]" "$work/stdout"
+check "the continued render's partial equals the uninterrupted one's" cmp -s "$work/continued.partial" "$work/straight.partial"
+check "a completed render removes its checkpoint" test ! -e "$work/ck"
+"$glint" "${cornell[@]}" --partial "$work/x.partial" --checkpoint "$work/continued.partial" --seed 9 > /dev/null 2> "$work/stderr"
+check "a checkpoint of other settings is refused, naming it" \
+  grep -q "continued.partial cannot be continued: it is from another scene or settings" "$work/stderr"
+
 # glint asks glibc for transparent huge pages by running itself again with GLIBC_TUNABLES set
 # (cli/huge_pages.h), unless the user set that variable. A server stays up long enough to look at
 # the environment it runs with.
