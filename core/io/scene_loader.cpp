@@ -402,15 +402,15 @@ LoadedScene parse_scene(const std::string& json_text, const std::filesystem::pat
     return SceneParser(folder, limits).parse(At{root, ""});
 }
 
-LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& limits) {
+LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& limits, const std::filesystem::path& folder) {
     std::vector<uint8_t> bytes;
     try {
         bytes = read_file(file.string(), limits.max_file_bytes);
     } catch (const FileError& e) {
         throw SceneError("", e.what());
     }
-    const auto folder = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
-    return parse_scene(std::string(bytes.begin(), bytes.end()), folder, limits);
+    const auto own = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
+    return parse_scene(std::string(bytes.begin(), bytes.end()), folder.empty() ? own : folder, limits);
 }
 
 }  // namespace glint

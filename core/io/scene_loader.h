@@ -26,6 +26,8 @@ struct LoadedScene {
 // with an empty folder every file reference is refused.
 LoadedScene parse_scene(const std::string& json_text, const std::filesystem::path& folder,
                         const SceneLimits& limits = {});
-LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& limits = {});
+// Mesh files are looked up in `folder`, or the scene file's own folder when it is empty.
+LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& limits = {},
+                       const std::filesystem::path& folder = {});
 
 }  // namespace glint

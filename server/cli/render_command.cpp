@@ -23,7 +23,7 @@ namespace {
 
 struct RenderOptions {
     std::vector<std::string> scenes;
-    std::string output, hdr, samples, partial, checkpoint;
+    std::string output, hdr, samples, partial, checkpoint, meshes;
     double checkpoint_interval = 5;
     std::optional<uint32_t> spp;
     std::optional<int> width, height;
@@ -121,7 +121,7 @@ private:
 int render_scene(const RenderOptions& o, const std::string& scene, const Outputs& out, ThreadPool& pool) {
     LoadedScene loaded;
     try {
-        loaded = load_scene(scene);
+        loaded = load_scene(scene, {}, o.meshes);
         apply_film_overrides(film_overrides(o), loaded.settings, SceneLimits{});
     } catch (const SceneError& e) {
         std::fprintf(stderr, "glint: %s: %s\n", scene.c_str(), e.what());
@@ -223,6 +223,7 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--hdr", o->hdr, "Also write the linear image as PFM (a folder for several scenes)");
     cmd->add_option("--samples", o->samples, "Render only samples A..B-1 of every pixel (A:B), for --partial");
     cmd->add_option("--partial", o->partial, "Write the per-pixel sums to this file, for glint merge");
+    cmd->add_option("--scenes", o->meshes, "Folder the scene's mesh files are read from (default: the scene file's)");
     cmd->add_option("--checkpoint", o->checkpoint,
                     "Keep the film in this file as the render goes, and continue from it if it is there");
     cmd->add_option("--checkpoint-interval", o->checkpoint_interval, "Seconds between checkpoints (default 5)")

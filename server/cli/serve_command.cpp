@@ -56,6 +56,21 @@ std::function<int()> add_serve_command(CLI::App& app) {
     cmd->add_option("--store-limit", o->service.store.limit_bytes,
                     "Bytes the store may hold; the oldest finished jobs are evicted beyond (default 2 GiB)")
         ->check(CLI::PositiveNumber);
+    CLI::Option* farm_dir =
+        cmd->add_option("--farm-dir", o->service.farm.dir, "Folder for the parts, on a filesystem every node sees");
+    cmd->add_option_function<std::string>(
+           "--farm", [o](const std::string&) { o->service.farm.slurm = true; },
+           "Render every job on a Slurm cluster (the one value: slurm); needs --farm-dir")
+        ->check(CLI::IsMember({"slurm"}))
+        ->needs(farm_dir);
+    cmd->add_option("--farm-parts", o->service.farm.parts, "Parts a job is split into (default 4)")
+        ->check(CLI::Range(1, 10000));
+    cmd->add_option("--farm-glint", o->service.farm.glint, "Command that runs glint on a node (default: glint)");
+    cmd->add_option("--farm-scripts", o->service.farm.scripts, "Folder of docker/slurm's scripts (default docker/slurm)");
+    cmd->add_option("--farm-sbatch", o->service.farm.sbatch, "More sbatch options for every part, as one string");
+    cmd->add_option("--farm-checkpoint-interval", o->service.farm.checkpoint_interval,
+                    "Seconds between a part's checkpoints, which the server shows as they come (default 2)")
+        ->check(CLI::Range(0.0, 3600.0));
     cmd->add_option("--token", o->http.token, "Bearer token the job routes require (needed off loopback)")->envname("GLINT_TOKEN");
     return [o] { return run_serve(*o); };
 }

@@ -26,6 +26,9 @@ nlohmann::json job_status(const Job& job) {
           {"stream", self + "/stream"},
           {"events", self + "/events"}}},
     });
+    if (s.parts)
+        j["parts"] = {{"queued", s.parts->queued}, {"running", s.parts->running}, {"done", s.parts->done},
+                      {"requeued", s.parts->requeued}};
     if (!s.error.empty()) j["error"] = s.error;
     if (!job.warnings().empty()) j["warnings"] = job.warnings();
     return j;

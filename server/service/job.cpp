@@ -1,5 +1,7 @@
 #include "service/job.h"
 
+#include <algorithm>
+
 #include <spdlog/spdlog.h>
 
 #include "io/fingerprint.h"
@@ -17,10 +19,12 @@ uint32_t most_samples(const Film& film) {
 
 }  // namespace
 
-Job::Job(std::string id, const LoadedScene& scene, const JobStore* store, std::chrono::system_clock::time_point created)
-    : id_(std::move(id)), render_(scene.scene, scene.settings), created_(created), warnings_(scene.warnings), store_(store) {
+Job::Job(std::string id, const LoadedScene& scene, const JobStore* store, std::chrono::system_clock::time_point created,
+         FarmJob farm)
+    : id_(std::move(id)), render_(scene.scene, scene.settings), created_(created), warnings_(scene.warnings), store_(store),
+      farm_(std::move(farm)) {
     snapshot_.progress.spp_target = render_.settings().spp;
-    if (store_) fingerprint_ = fingerprint(*scene.scene, scene.settings);
+    if (store_ || on_farm()) fingerprint_ = fingerprint(*scene.scene, scene.settings);
 }
 
 Progress Job::with_earlier_time(Progress p) const {
@@ -93,8 +97,23 @@ void Job::run(ThreadPool& pool) {
         snapshot_.state = JobState::running;
     }
     changed_.notify_all();
-    spdlog::info("job {} running: {}x{}, {} spp, from sample {}", id_, settings().width, settings().height,
-                 settings().spp, render_.progress().spp_done);
+    spdlog::info("job {} running{}: {}x{}, {} spp, from sample {}", id_, on_farm() ? " on the farm" : "",
+                 settings().width, settings().height, settings().spp, render_.progress().spp_done);
+    if (on_farm()) return render_on_farm();
+    render_here(pool);
+}
+
+void Job::end_failed(const std::string& error, const Progress& progress) {
+    spdlog::error("job {} failed: {}", id_, error);
+    save_state(JobState::failed, error, progress);
+    {
+        std::lock_guard lock(mutex_);
+        snapshot_.error = error;
+    }
+    publish(JobState::failed, progress);
+}
+
+void Job::render_here(ThreadPool& pool) {
     StopReason reason = StopReason::cancelled;
     try {
         reason = render_.run(pool, [&](const Progress& pass) {
@@ -116,14 +135,7 @@ void Job::run(ThreadPool& pool) {
         save_final(end, p);
         publish(end, p);
     } catch (const std::exception& e) {
-        spdlog::error("job {} failed: {}", id_, e.what());
-        const Progress p = with_earlier_time(render_.progress());
-        save_state(JobState::failed, e.what(), p);
-        {
-            std::lock_guard lock(mutex_);
-            snapshot_.error = e.what();
-        }
-        publish(JobState::failed, p);
+        end_failed(e.what(), with_earlier_time(render_.progress()));
         return;
     }
     const JobSnapshot last = snapshot();
@@ -131,7 +143,78 @@ void Job::run(ThreadPool& pool) {
                  last.progress.spp_done, last.progress.seconds, last.progress.error_estimate);
 }
 
+bool Job::merge_parts(const std::vector<PartFilm>& parts) {
+    std::vector<Partial> films;
+    for (const PartFilm& part : parts)
+        if (part.film) films.push_back(*part.film);
+    if (films.empty()) return false;
+    const bool all_done = films.size() == parts.size() &&
+                          std::all_of(parts.begin(), parts.end(), [](const PartFilm& p) { return p.done; });
+    uint32_t samples = 0;
+    for (const Partial& film : films) {
+        if (film.fingerprint != fingerprint_) throw FarmError("a part rendered another scene or settings (fingerprint differs)");
+        samples += film.end_sample - film.first_sample;
+    }
+    // Every part done: the ranges tile the job, and merge_partials adds them in the order glint
+    // merge does, to the whole render's bytes. Before, a preview: the parts' sums so far.
+    Partial merged = all_done ? merge_partials(std::move(films)) : std::move(films.front());
+    if (!all_done)
+        for (size_t i = 1; i < films.size(); ++i) merged.film.merge(films[i].film);
+    render_.resume(std::move(merged.film), samples);
+    return all_done;
+}
+
+void Job::render_on_farm() {
+    const auto start = std::chrono::steady_clock::now();
+    const auto progress = [&] {
+        Progress p = render_.progress();
+        p.seconds = seconds_before_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        p.samples_per_second = p.seconds > 0 ? double(p.spp_done) * settings().width * settings().height / p.seconds : 0;
+        return p;
+    };
+    const SlurmFarm& farm = *farm_.farm;
+    try {
+        if (!farm_.run) {
+            farm_.run = farm.submit(id_, farm_.request, settings());
+            if (store_) store_->save_farm(id_, farm_.run->to_json().dump());
+            spdlog::info("job {} submitted to Slurm: parts {}, merge {}", id_, farm_.run->array, farm_.run->merge);
+        }
+        std::vector<PartFilm> parts(farm_.run->ranges.size());
+        for (bool done = false; !done;) {
+            if (suspended_) return publish(JobState::cancelled, progress());  // the parts go on; a restart follows them
+            if (cancelled_) {
+                farm.cancel(*farm_.run);
+                save_final(JobState::cancelled, progress());
+                return publish(JobState::cancelled, progress());
+            }
+            if (const auto failure = farm.failure(*farm_.run)) {
+                farm.cancel(*farm_.run);
+                return end_failed(*failure, progress());
+            }
+            bool changed = false;
+            for (size_t i = 0; i < parts.size(); ++i) changed |= farm.refresh(*farm_.run, i, parts[i]);
+            done = changed && merge_parts(parts);
+            const PartCounts counts = farm.count(*farm_.run);
+            {
+                std::lock_guard lock(mutex_);
+                snapshot_.parts = counts;
+            }
+            if (changed && !done) publish(JobState::running, progress());
+            std::unique_lock lock(mutex_);
+            changed_.wait_for(lock, std::chrono::duration<double>(farm.config().poll_interval),
+                              [&] { return cancelled_ || suspended_; });
+        }
+        save_final(JobState::done, progress());
+        publish(JobState::done, progress());
+        spdlog::info("job {} done on the farm: {} spp", id_, render_.progress().spp_done);
+    } catch (const std::exception& e) {
+        if (farm_.run) farm.cancel(*farm_.run);
+        end_failed(e.what(), progress());
+    }
+}
+
 void Job::cancel() {
+    cancelled_ = true;
     {
         std::lock_guard lock(mutex_);
         if (is_final(snapshot_.state) || suspended_) return;

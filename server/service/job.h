@@ -15,6 +15,7 @@
 #include "render/renderer.h"
 #include "service/job_state.h"
 #include "service/job_store.h"
+#include "service/slurm_farm.h"
 
 namespace glint {
 
@@ -25,6 +26,15 @@ struct JobSnapshot {
     std::shared_ptr<const std::vector<uint8_t>> png;  // null until the first pass
     std::shared_ptr<const Image> image;               // the linear mean image of that frame
     std::string error;                                // why a failed job failed
+    std::optional<PartCounts> parts;                  // a farm job's parts, once submitted
+};
+
+// A job rendered on a farm rather than on the server's threads: the farm, the request its parts
+// are made from, and its submission when a restarted server takes the job back.
+struct FarmJob {
+    const SlurmFarm* farm = nullptr;
+    std::string request;
+    std::optional<FarmRun> run;
 };
 
 class Job {
@@ -32,7 +42,7 @@ public:
     // With a store, the job saves its state when it changes and its film after passes (at most
     // every checkpoint interval) and at the end; see job_store.h.
     Job(std::string id, const LoadedScene& scene, const JobStore* store = nullptr,
-        std::chrono::system_clock::time_point created = std::chrono::system_clock::now());
+        std::chrono::system_clock::time_point created = std::chrono::system_clock::now(), FarmJob farm = {});
 
     const std::string& id() const { return id_; }
     const RenderSettings& settings() const { return render_.settings(); }
@@ -40,8 +50,9 @@ public:
     // The scene's warnings (what it asks for that glint does not model), fixed at submission.
     const std::vector<std::string>& warnings() const { return warnings_; }
 
-    // Renders to the end on `pool` (called by the job manager's slot thread).
+    // Renders to the end on `pool`, or on the farm (called by the job manager's slot thread).
     void run(ThreadPool& pool);
+    bool on_farm() const { return farm_.farm != nullptr; }
     // Queued: ends at once. Running: the pass in flight stops after its tiles in progress.
     void cancel();
     // A graceful stop with a store: the job ends at its next pass boundary with a checkpoint and
@@ -62,6 +73,14 @@ public:
     JobSnapshot wait(uint64_t after, std::chrono::milliseconds timeout) const;
 
 private:
+    void render_here(ThreadPool& pool);
+    // The farm's side of run(): submits the parts (or follows a restored submission), publishes
+    // what they have rendered as it arrives, and ends when every part is done, one fails, or
+    // the job is cancelled (which cancels the parts) or suspended (which leaves them running).
+    void render_on_farm();
+    // Merges the parts' films into the job's film; returns whether every part is done.
+    bool merge_parts(const std::vector<PartFilm>& parts);
+    void end_failed(const std::string& error, const Progress& progress);
     void publish(JobState state, const Progress& progress);
     Progress with_earlier_time(Progress p) const;
     // Store writes: a failure is logged, never stops the render or a request.
@@ -78,6 +97,8 @@ private:
     double seconds_before_ = 0;  // rendering time before a restart
     std::chrono::steady_clock::time_point last_checkpoint_ = std::chrono::steady_clock::now();
     std::atomic<bool> suspended_{false};
+    std::atomic<bool> cancelled_{false};
+    FarmJob farm_;
     mutable std::mutex mutex_;
     mutable std::condition_variable changed_;
     JobSnapshot snapshot_;

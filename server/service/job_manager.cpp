@@ -23,7 +23,8 @@ std::string new_job_id() {
 JobManager::JobManager(ThreadPool& pool, const ServiceConfig& config)
     : pool_(pool),
       config_(config),
-      store_(config.store.dir.empty() ? nullptr : std::make_unique<JobStore>(config.store)) {
+      store_(config.store.dir.empty() ? nullptr : std::make_unique<JobStore>(config.store)),
+      farm_(config.farm.slurm ? std::make_unique<SlurmFarm>(config.farm, config.scenes) : nullptr) {
     for (unsigned i = 0; i < config_.max_running; ++i) slots_.emplace_back([this] { slot(); });
 }
 
@@ -38,7 +39,7 @@ std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene, const std::str
         throw InvalidRequest("the job's checkpoint (" + std::to_string(film_bytes) +
                              " bytes) would not fit in the store (limit " +
                              std::to_string(store_->config().limit_bytes) + " bytes)");
-    auto job = std::make_shared<Job>(new_job_id(), scene, store_.get());
+    auto job = std::make_shared<Job>(new_job_id(), scene, store_.get(), std::chrono::system_clock::now(), farm_job(request));
     {
         std::lock_guard lock(mutex_);
         if (stopping_) throw Busy("the server is shutting down");
@@ -124,7 +125,7 @@ std::shared_ptr<Job> JobManager::restore_job(const StoredJob& stored, const Load
     LoadedScene scene = loaded;
     if (scene.settings.time_limit > 0)  // the time rendered before the restart counts
         scene.settings.time_limit = std::max(1e-3, scene.settings.time_limit - stored.progress.seconds);
-    auto job = std::make_shared<Job>(stored.id, scene, store_.get(), stored.created);
+    auto job = std::make_shared<Job>(stored.id, scene, store_.get(), stored.created, farm_job(stored.request, stored.farm));
     const bool final = is_final(stored.state);
     const FilmFile which = final ? FilmFile::final : FilmFile::checkpoint;
     try {
@@ -140,6 +141,13 @@ std::shared_ptr<Job> JobManager::restore_job(const StoredJob& stored, const Load
     } catch (const std::exception& e) {
         job->fail(store_->film_path(stored.id, which).string() + ": " + e.what());
     }
+    return job;
+}
+
+FarmJob JobManager::farm_job(const std::string& request, const std::string& stored_run) const {
+    if (!farm_) return {};
+    FarmJob job{farm_.get(), request, std::nullopt};
+    if (!stored_run.empty()) job.run = FarmRun::from_json(nlohmann::json::parse(stored_run));
     return job;
 }
 

@@ -47,10 +47,12 @@ private:
     // plus `reserve` bytes about to be written, is over its limit.
     void forget_old_finished(uint64_t reserve = 0);
     std::shared_ptr<Job> restore_job(const StoredJob& stored, const LoadedScene& scene) const;
+    FarmJob farm_job(const std::string& request, const std::string& stored_run = "") const;
 
     ThreadPool& pool_;
     ServiceConfig config_;
     std::unique_ptr<JobStore> store_;
+    std::unique_ptr<SlurmFarm> farm_;  // with config.farm.slurm: every job renders there
     mutable std::mutex mutex_;
     std::condition_variable work_;
     std::deque<std::shared_ptr<Job>> queue_;

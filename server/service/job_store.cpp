@@ -73,6 +73,7 @@ std::vector<StoredJob> JobStore::load() const {
             job.state = job_state_named(state.at("state").get<std::string>());
             job.error = state.at("error").get<std::string>();
             job.progress = progress_from_json(state.at("progress"));
+            if (fs::exists(entry.path() / "farm.json")) job.farm = read_text(entry.path() / "farm.json", kMaxStateBytes);
             jobs.push_back(std::move(job));
         } catch (const std::exception& e) {
             spdlog::error("store: job {} left out: cannot read its request or state in {}: {}", id,
@@ -105,6 +106,10 @@ fs::path JobStore::film_path(const std::string& id, FilmFile which) const {
 
 void JobStore::save_film(const std::string& id, FilmFile which, const Partial& film) const {
     write_file(film_path(id, which).string(), encode_partial(film));
+}
+
+void JobStore::save_farm(const std::string& id, const std::string& farm) const {
+    write_file((folder(id) / "farm.json").string(), bytes_of(farm));
 }
 
 Partial JobStore::load_film(const std::string& id, FilmFile which) const {

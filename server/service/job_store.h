@@ -9,6 +9,7 @@
 //   checkpoint.glntpart the film after a whole pass (samples [first, end) of every pixel), in
 //                       the partial-file format of core/io/partial_file.h (fingerprint, checksum)
 //   final.glntpart      the film as the job ended (a cancelled job's last pass may be partial)
+//   farm.json           a job rendered on a farm: its Slurm submission (service/slurm_farm.h)
 // Every file is written atomically (core/base/files.h): a crash leaves the old file or the new one.
 #pragma once
 
@@ -34,6 +35,7 @@ struct StoredJob {
     JobState state = JobState::queued;
     std::string error;
     Progress progress;
+    std::string farm;  // farm.json's text, for a job submitted to a farm; else empty
 };
 
 enum class FilmFile { checkpoint, final };
@@ -51,6 +53,7 @@ public:
     void save_state(const std::string& id, std::chrono::system_clock::time_point created, JobState state,
                     const std::string& error, const Progress& progress) const;
     void save_film(const std::string& id, FilmFile which, const Partial& film) const;
+    void save_farm(const std::string& id, const std::string& farm) const;
     // Throws PartialError (corrupt, truncated) or FileError.
     Partial load_film(const std::string& id, FilmFile which) const;
     bool has_film(const std::string& id, FilmFile which) const;

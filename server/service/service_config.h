@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 
 #include "io/scene_limits.h"
 
@@ -21,6 +22,28 @@ struct StoreConfig {
     // Bytes the store may hold; beyond, the oldest finished jobs are evicted, so a server that
     // runs for months does not fill its disk.
     uint64_t limit_bytes = uint64_t(2) << 30;
+};
+
+// `glint serve --farm slurm`: every job rendered on a Slurm cluster as a job array of sample
+// ranges (service/slurm_farm.h) instead of on this server's threads.
+struct FarmConfig {
+    // False: jobs render here, and nothing below is used.
+    bool slurm = false;
+    // The parts' folder, one subfolder a job; every node must see it at the same path, and the
+    // scenes folder too.
+    std::filesystem::path dir;
+    // Parts a job is split into: at most the nodes that should render it at once.
+    unsigned parts = 4;
+    // docker/slurm/: submit, render-part and merge.
+    std::filesystem::path scripts = "docker/slurm";
+    // The command that runs glint on a node (it may be several words: a container runner).
+    std::string glint = "glint";
+    // More sbatch options for every job (partition, account, CPUs per task), as one string.
+    std::string sbatch;
+    // Seconds between looks at the parts' progress: how soon a part's checkpoint shows.
+    double poll_interval = 0.5;
+    // Seconds between a part's checkpoints (glint render --checkpoint-interval).
+    double checkpoint_interval = 2;
 };
 
 struct ServiceConfig {
@@ -41,6 +64,7 @@ struct ServiceConfig {
     SceneLimits scene{
         .max_dimension = 4096, .max_pixels = int64_t(4096) * 4096, .max_spp = 1u << 16};
     StoreConfig store;
+    FarmConfig farm;
 };
 
 }  // namespace glint
