@@ -144,23 +144,31 @@ void Job::render_here(ThreadPool& pool) {
 }
 
 bool Job::merge_parts(const std::vector<PartFilm>& parts) {
-    std::vector<Partial> films;
-    for (const PartFilm& part : parts)
-        if (part.film) films.push_back(*part.film);
-    if (films.empty()) return false;
-    const bool all_done = films.size() == parts.size() &&
-                          std::all_of(parts.begin(), parts.end(), [](const PartFilm& p) { return p.done; });
     uint32_t samples = 0;
-    for (const Partial& film : films) {
-        if (film.fingerprint != fingerprint_) throw FarmError("a part rendered another scene or settings (fingerprint differs)");
-        samples += film.end_sample - film.first_sample;
+    size_t done = 0, have = 0;
+    for (const PartFilm& part : parts) {
+        if (!part.film) continue;
+        if (part.film->fingerprint != fingerprint_)
+            throw FarmError("a part rendered another scene or settings (fingerprint differs)");
+        samples += part.film->end_sample - part.film->first_sample;
+        done += part.done;
+        ++have;
     }
+    if (have == 0) return false;
+    const bool all_done = done == parts.size();
     // Every part done: the ranges tile the job, and merge_partials adds them in the order glint
-    // merge does, to the whole render's bytes. Before, a preview: the parts' sums so far.
-    Partial merged = all_done ? merge_partials(std::move(films)) : std::move(films.front());
-    if (!all_done)
-        for (size_t i = 1; i < films.size(); ++i) merged.film.merge(films[i].film);
-    render_.resume(std::move(merged.film), samples);
+    // merge does, to the whole render's bytes. Before, a preview: the parts' sums so far, added
+    // to an empty film (adding to zero is exact) without copying the parts.
+    Film merged(settings().width, settings().height);
+    if (all_done) {
+        std::vector<Partial> films;
+        for (const PartFilm& part : parts) films.push_back(*part.film);
+        merged = merge_partials(std::move(films)).film;
+    } else {
+        for (const PartFilm& part : parts)
+            if (part.film) merged.merge(part.film->film);
+    }
+    render_.resume(std::move(merged), samples);
     return all_done;
 }
 
@@ -191,9 +199,14 @@ void Job::render_on_farm() {
                 farm.cancel(*farm_.run);
                 return end_failed(*failure, progress());
             }
+            const auto look = std::chrono::steady_clock::now();
             bool changed = false;
             for (size_t i = 0; i < parts.size(); ++i) changed |= farm.refresh(*farm_.run, i, parts[i]);
             done = changed && merge_parts(parts);
+            if (changed)
+                spdlog::info("job {} on the farm: {}/{} spp, parts read and merged in {:.1f} ms", id_,
+                             render_.progress().spp_done, settings().spp,
+                             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - look).count());
             const PartCounts counts = farm.count(*farm_.run);
             {
                 std::lock_guard lock(mutex_);

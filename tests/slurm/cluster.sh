@@ -83,13 +83,16 @@ CONF
   return 1
 }
 
+cluster_processes() {  # DIR: every process started with this cluster's SLURM_CONF (the daemons, their steps and tasks)
+  grep -lz "^SLURM_CONF=$1/slurm.conf$" /proc/[0-9]*/environ 2> /dev/null | cut -d/ -f3 || true
+}
+
 cluster_pids() {  # DIR: the daemons' pids, and the job steps and their tasks
   local dir=$1 file
   for file in "$dir"/slurmd-*.pid "$dir/slurmctld.pid" "$dir/munge/munged.pid"; do
     [ -s "$file" ] && cat "$file"
   done
-  pgrep -f "^slurmstepd: " || true
-  grep -lz "^SLURM_CONF=$dir/slurm.conf$" /proc/[0-9]*/environ 2> /dev/null | cut -d/ -f3 || true
+  cluster_processes "$dir"
 }
 
 cluster_stop() {
@@ -107,12 +110,13 @@ cluster_stop() {
 }
 
 cluster_kill_node() {  # DIR NODE: the node's slurmd, its job steps and their tasks, with SIGKILL
-  local dir=$1 node=$2 pids
-  pids=$(cat "$dir/slurmd-$node.pid")
-  pids="$pids $(grep -lz "^SLURMD_NODENAME=$node$" /proc/[0-9]*/environ 2> /dev/null | cut -d/ -f3)"
-  local p
-  for p in $(pgrep -f "^slurmstepd: "); do  # the node's steps: the parents of its tasks
-    for q in $pids; do [ "$(ps -o ppid= -p "$q" 2> /dev/null | tr -d ' ')" = "$p" ] && pids="$pids $p"; done
+  local dir=$1 node=$2 pids tasks p
+  tasks=$(for p in $(cluster_processes "$dir"); do
+    grep -qz "^SLURMD_NODENAME=$node$" "/proc/$p/environ" 2> /dev/null && echo "$p"
+  done)
+  pids="$(cat "$dir/slurmd-$node.pid") $tasks"
+  for p in $tasks; do  # the node's steps: the parents of its tasks
+    pids="$pids $(ps -o ppid= -p "$p" 2> /dev/null | tr -d ' ')"
   done
   kill -9 $pids 2> /dev/null || true
 }
