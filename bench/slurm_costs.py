@@ -9,7 +9,8 @@ Two cores cannot show a speed-up over four nodes, so this measures the fixed cos
 - Slurm's own latencies, on the four-node cluster tests/slurm/cluster.sh starts here (its
   scheduler wakes every second): submit to the first and last part's start, last part's end to
   the merge's start, the merge job, and submit --wait's return; parts of a tiny render, medians of
-  --runs;
+  --runs; and, on the same cluster, glint serve --farm slurm's looks at a 1024x768 job's parts
+  (reading the checkpoints that changed and merging every part's film);
 - a part's start-up at 1024x768 on this machine: the process, scene load and BVH build (a 1x1
   render), and the film's partial file written at the end (the rest of a 4-spp part's time beyond
   its render);
@@ -70,6 +71,39 @@ def slurm_latencies(work, runs):
                      "last part's end to merge": merge_start - max(ends), "merge job (tiny)": merge_end - merge_start,
                      "submit --wait returns": returned})
     return {k: statistics.median(r[k] for r in rows) for k in rows[0]}
+
+
+def server_merges(work):
+    """glint serve --farm slurm on a job of 4 parts at 1024x768: the time of each look that found
+    a new checkpoint or partial file (reading the changed files and merging every part's film)."""
+    import socket
+    import urllib.request
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        port = s.getsockname()[1]
+    log = os.path.join(work, "server.log")
+    server = subprocess.Popen([GLINT, "serve", "--port", str(port), "--scenes", os.path.join(ROOT, "scenes"),
+                               "--web", os.path.join(ROOT, "web"), "--farm", "slurm", "--farm-dir", os.path.join(work, "farm"),
+                               "--farm-parts", "4", "--farm-glint", GLINT, "--farm-scripts", os.path.dirname(SUBMIT),
+                               "--farm-checkpoint-interval", "1"], stdout=open(log, "w"), stderr=subprocess.STDOUT)
+    try:
+        url = f"http://127.0.0.1:{port}/jobs"
+        for _ in range(100):
+            try:
+                urllib.request.urlopen(url, timeout=2).read()
+                break
+            except OSError:
+                time.sleep(0.1)
+        body = json.dumps({"preset": "cornell", "width": WIDTH, "height": HEIGHT, "spp": 32}).encode()
+        job = json.loads(urllib.request.urlopen(urllib.request.Request(url, body, method="POST")).read())["id"]
+        for _ in range(1200):
+            if json.loads(urllib.request.urlopen(f"{url}/{job}").read())["state"] != "running":
+                break
+            time.sleep(0.25)
+    finally:
+        server.terminate()
+        server.wait(20)
+    return [float(m) for m in re.findall(r"parts read and merged in ([0-9.]+) ms", open(log).read())]
 
 
 def timed(command):
@@ -133,12 +167,15 @@ def main():
     try:
         os.environ["SLURM_CONF"] = cluster("start", os.path.join(work, "cluster"))
         latency = slurm_latencies(work, a.runs)
+        merges = server_merges(work)
     finally:
         cluster("stop", os.path.join(work, "cluster"))
     try:
         print(f"Slurm, four nodes on this machine, medians of {a.runs}:")
         for k, v in latency.items():
             print(f"  {k}: {v:.2f} s")
+        print(f"glint serve --farm slurm, 4 parts at {WIDTH}x{HEIGHT}: {len(merges)} looks found new films; "
+              f"reading them and merging took {min(merges):.0f}-{max(merges):.0f} ms, median {statistics.median(merges):.0f} ms")
         costs = {s: part_costs(work, s, a.runs) for s in SCENES}
         print(f"A part at {WIDTH}x{HEIGHT}, 2 threads, medians of {a.runs}:")
         for s, (load, rest, rate) in costs.items():
@@ -155,7 +192,8 @@ def main():
                                  ("mesh scene, 1024x768, 4096 spp", "mesh", 4096)):
             load, rest, rate = costs[scene]
             model(name, WIDTH * HEIGHT * spp, rate, fixed_slurm + load + rest + merge_fixed, merge_per_part)
-        json.dump({"latency": latency, "parts": costs, "merge": {str(k): v for k, v in seconds.items()}},
+        json.dump({"latency": latency, "server_merges_ms": merges, "parts": costs,
+                   "merge": {str(k): v for k, v in seconds.items()}},
                   open(os.path.join(ROOT, "bench", "results", "slurm_costs.json"), "w"), indent=1)
     finally:
         shutil.rmtree(work, ignore_errors=True)
