@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """`glint serve --farm slurm` on a Slurm cluster of four nodes started here (cluster.sh): a job's
 parts render on the nodes while the server streams their merged progress; the final image equals
-a local render's bytes; cancelling leaves nothing in Slurm's queue; a node killed under a part
+a local render's bytes, for a preset and for a posted scene with a mesh; cancelling leaves nothing in Slurm's queue; a node killed under a part
 loses no sample and counts none twice; a restarted server (--store) finds its farm job again.
 
   farm_test.py GLINT SOURCE_DIR      (as root, with slurmctld slurmd slurm-client munge)
@@ -119,6 +119,21 @@ def refines_and_matches(server, local):
     same_image(server, job, local, "a farm job")
 
 
+def posted_scene(server, work):
+    """A scene posted whole (with a mesh, read from the scenes folder) rather than a preset."""
+    scene = json.load(open(os.path.join(SOURCE, "scenes", "mesh.json")))
+    scene["film"].update({"width": 48, "height": 32, "spp": 64})
+    path = os.path.join(work, "posted.json")
+    json.dump(scene, open(path, "w"))
+    local = os.path.join(work, "posted.png")
+    subprocess.run([GLINT, "render", path, "-o", local, "--scenes", os.path.join(SOURCE, "scenes")], check=True,
+                   capture_output=True)
+    job = json.loads(server.request("POST", "/jobs", scene))["id"]
+    seen = follow(server, job)
+    check("a posted scene with a mesh ends done on the farm", seen[-1]["state"] == "done")
+    check("and its PNG equals a local render's bytes", server.get(f"/jobs/{job}/image.png") == open(local, "rb").read())
+
+
 def wait_for(condition, seconds=60):
     deadline = time.time() + seconds
     while time.time() < deadline:
@@ -182,6 +197,7 @@ def main():
         local = local_render(work)
         server = Server(work)
         refines_and_matches(server, local)
+        posted_scene(server, work)
         cancel(server)
         killed_node(server, work, local)
         server = restarted(server, work, local)
