@@ -14,12 +14,8 @@ chmod 755 "$work"  # munged runs as the munge user, in a folder under it
 # shellcheck source=cluster.sh
 source "$(dirname "$0")/cluster.sh"
 trap 'cluster_stop "$work/cluster"; rm -rf "$work"' EXIT
-failures=0
-passes=0
-check() {  # description, then a command that must succeed
-  local what=$1; shift
-  if "$@"; then echo "ok: $what"; passes=$((passes + 1)); else echo "FAILED: $what"; failures=$((failures + 1)); fi
-}
+# shellcheck source=../support/check.sh
+source "$(dirname "$0")/../support/check.sh"
 cluster_start "$work/cluster" || { echo "FAILED: the cluster did not start"; cat "$work"/cluster/*.log; exit 1; }
 echo "cluster up: $(sinfo -h -o '%D nodes %T')"
 
@@ -87,5 +83,4 @@ check "(c) nothing is left queued or running" test -z "$(squeue -h)"
 if [ "$failures" -gt 0 ]; then
   for f in "$work"/*.out "$work"/*.parts/*.log; do echo "== $f"; cat "$f"; done
 fi
-echo "slurm: $passes passed, $failures failed"
-exit $((failures > 0))
+check_summary slurm

@@ -7,12 +7,8 @@ shared=$2
 source=$3
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-failures=0
-passes=0
-check() {  # description, then a command that must succeed
-  local what=$1; shift
-  if "$@"; then echo "ok: $what"; passes=$((passes + 1)); else echo "FAILED: $what"; failures=$((failures + 1)); fi
-}
+# shellcheck source=../../support/check.sh
+source "$(dirname "$0")/../../support/check.sh"
 
 cat > "$work/tiny.json" <<'JSON'
 {"camera": {"position": [0, 0, 3], "look_at": [0, 0, 0]},
@@ -117,5 +113,4 @@ environment_of_server() {  # GLIBC_TUNABLES for the server, or unset; prints its
 check "glint runs with glibc's huge pages" bash -c "grep -qx 'GLIBC_TUNABLES=glibc.malloc.hugetlb=1' <<< '$(environment_of_server -u GLIBC_TUNABLES)'"
 check "a GLIBC_TUNABLES the user set is left alone" bash -c "grep -qx 'GLIBC_TUNABLES=glibc.malloc.check=0' <<< '$(environment_of_server GLIBC_TUNABLES=glibc.malloc.check=0)'"
 
-echo "cli: $passes passed, $failures failed"
-exit $((failures > 0))
+check_summary cli
