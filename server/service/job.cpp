@@ -235,6 +235,8 @@ void Job::cancel() {
             save_state(JobState::cancelled, "", snapshot_.progress);  // on disk first, as in run()
             snapshot_.state = JobState::cancelled;
             snapshot_.frame += 1;
+            // A farm job a restarted server took back: its parts run on though it waits here.
+            if (farm_.run) farm_.farm->cancel(*farm_.run);
         }
     }
     render_.cancel();
