@@ -19,7 +19,7 @@ namespace {
 
 // Runs argv without a shell; returns its exit status (-1 if it could not start), with what it
 // wrote to stdout and stderr in `output`.
-int run(const std::vector<std::string>& argv, std::string& output) {
+int run_command(const std::vector<std::string>& argv, std::string& output) {
     int fds[2];
     if (pipe2(fds, O_CLOEXEC) != 0) return -1;
     posix_spawn_file_actions_t actions;
@@ -115,7 +115,7 @@ FarmRun SlurmFarm::submit(const std::string& job_id, const std::string& request,
     argv.push_back("--");
     argv.insert(argv.end(), part.begin() + 1, part.end());
     std::string output;
-    if (run(argv, output) != 0) throw FarmError("Slurm did not take the job: " + output);
+    if (run_command(argv, output) != 0) throw FarmError("Slurm did not take the job: " + output);
     std::smatch parts, merge;
     if (!std::regex_search(output, parts, std::regex(R"(parts: job (\d+) \(tasks \S+, samples ([^)]*)\))")) ||
         !std::regex_search(output, merge, std::regex(R"(merge: job (\d+))")))
@@ -126,14 +126,14 @@ FarmRun SlurmFarm::submit(const std::string& job_id, const std::string& request,
     return result;
 }
 
-PartCounts SlurmFarm::count(const FarmRun& run_) const {
+PartCounts SlurmFarm::count(const FarmRun& run) const {
     PartCounts counts;
-    for (size_t i = 0; i < run_.ranges.size(); ++i) {
-        if (std::filesystem::exists(part_file(run_, i, ".partial"))) ++counts.done;
-        if (read_text(part_file(run_, i, ".log")).find(", attempt 2,") != std::string::npos) ++counts.requeued;
+    for (size_t i = 0; i < run.ranges.size(); ++i) {
+        if (std::filesystem::exists(part_file(run, i, ".partial"))) ++counts.done;
+        if (read_text(part_file(run, i, ".log")).find(", attempt 2,") != std::string::npos) ++counts.requeued;
     }
     std::string output;
-    if (run({"squeue", "-h", "-r", "-j", run_.array, "-o", "%t"}, output) != 0) return counts;
+    if (run_command({"squeue", "-h", "-r", "-j", run.array, "-o", "%t"}, output) != 0) return counts;
     std::istringstream states(output);
     for (std::string state; states >> state;) {
         if (state == "PD") ++counts.queued;
@@ -142,17 +142,17 @@ PartCounts SlurmFarm::count(const FarmRun& run_) const {
     return counts;
 }
 
-void SlurmFarm::cancel(const FarmRun& run_) const {
+void SlurmFarm::cancel(const FarmRun& run) const {
     std::string output;
-    run({"scancel", run_.array, run_.merge}, output);
+    run_command({"scancel", run.array, run.merge}, output);
 }
 
-bool SlurmFarm::refresh(const FarmRun& run_, size_t i, PartFilm& part) const {
+bool SlurmFarm::refresh(const FarmRun& run, size_t i, PartFilm& part) const {
     if (part.done) return false;
     std::error_code error;
-    const std::filesystem::path final_file = part_file(run_, i, ".partial");
+    const std::filesystem::path final_file = part_file(run, i, ".partial");
     const bool done = std::filesystem::exists(final_file, error);
-    const std::filesystem::path file = done ? final_file : part_file(run_, i, ".checkpoint");
+    const std::filesystem::path file = done ? final_file : part_file(run, i, ".checkpoint");
     const auto time = std::filesystem::last_write_time(file, error);
     if (error || (!done && time == part.read_at)) return false;
     Partial film = decode_partial(read_file(file.string(), size_t(8) << 30));
@@ -163,9 +163,9 @@ bool SlurmFarm::refresh(const FarmRun& run_, size_t i, PartFilm& part) const {
     return true;
 }
 
-std::optional<std::string> SlurmFarm::failure(const FarmRun& run_) const {
-    for (size_t i = 0; i < run_.ranges.size(); ++i)
-        if (std::filesystem::exists(part_file(run_, i, ".failed"))) return read_text(part_file(run_, i, ".failed"));
+std::optional<std::string> SlurmFarm::failure(const FarmRun& run) const {
+    for (size_t i = 0; i < run.ranges.size(); ++i)
+        if (std::filesystem::exists(part_file(run, i, ".failed"))) return read_text(part_file(run, i, ".failed"));
     return std::nullopt;
 }
 
