@@ -4,7 +4,7 @@
 //
 // Why: most kernels hand out huge pages only where a program asks (THP "madvise"), and glibc does
 // not ask by default. Loading a mesh of a million triangles then touches some 300 MB in 4 KiB
-// pages: on the virtual machines measured, one page fault each (186,000 faults, a second of
+// pages: on the virtual machines measured, one page fault each (187,000 faults, a second of
 // system time) and a TLB miss on most accesses of the BVH build, so that OBJ parse and build
 // took 2.7 s instead of 0.65 s (bench/BENCHMARKS.md, time to first pixel). Renders of smaller
 // scenes gain a few per cent.

@@ -70,13 +70,12 @@ FilmOverrides film_overrides(const RenderOptions& o) {
     return f;
 }
 
-void write_outputs(const RenderJob& job, const LoadedScene& loaded, const Outputs& out) {
+// `print` is the fingerprint of the scene and settings (needed only for a partial file).
+void write_outputs(const RenderJob& job, uint64_t print, const Outputs& out) {
     const Image image = job.film().mean();
     if (!out.png.empty()) write_file(out.png, encode_png(image, job.settings().encoding));
     if (!out.hdr.empty()) write_file(out.hdr, encode_pfm(image));
-    if (out.partial.empty()) return;
-    const uint64_t print = fingerprint(*loaded.scene, job.settings());
-    write_file(out.partial, encode_partial(partial_of(job, print, job.progress().spp_done)));
+    if (!out.partial.empty()) write_file(out.partial, encode_partial(partial_of(job, print, job.progress().spp_done)));
 }
 
 // --checkpoint FILE: the film of the whole passes done, kept in FILE (a partial file) at pass ends
@@ -133,7 +132,10 @@ int render_scene(const RenderOptions& o, const std::string& scene, const Outputs
                  g.sphere_count(), g.triangle_count(), g.degenerate_triangles(), loaded.scene->lights().size(),
                  loaded.settings.width, loaded.settings.height, loaded.settings.spp);
     RenderJob job(loaded.scene, loaded.settings);
-    Checkpoint checkpoint(out.checkpoint, o.checkpoint_interval, fingerprint(*loaded.scene, loaded.settings));
+    // Hashing the scene costs a pass over every triangle: only for the files that carry it.
+    const uint64_t print =
+        out.partial.empty() && out.checkpoint.empty() ? 0 : fingerprint(*loaded.scene, loaded.settings);
+    Checkpoint checkpoint(out.checkpoint, o.checkpoint_interval, print);
     try {
         checkpoint.resume(job);
     } catch (const SceneError& e) {
@@ -149,7 +151,7 @@ int render_scene(const RenderOptions& o, const std::string& scene, const Outputs
     bar.finish();
     g_interruptible = nullptr;
     try {
-        write_outputs(job, loaded, out);
+        write_outputs(job, print, out);
         if (reason == StopReason::completed) checkpoint.remove();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "glint: %s\n", e.what());

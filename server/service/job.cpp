@@ -143,7 +143,7 @@ void Job::render_here(ThreadPool& pool) {
                  last.progress.spp_done, last.progress.seconds, last.progress.error_estimate);
 }
 
-bool Job::merge_parts(const std::vector<PartFilm>& parts) {
+bool Job::merge_parts(std::vector<PartFilm>& parts) {
     uint32_t samples = 0;
     size_t done = 0, have = 0;
     for (const PartFilm& part : parts) {
@@ -162,7 +162,7 @@ bool Job::merge_parts(const std::vector<PartFilm>& parts) {
     Film merged(settings().width, settings().height);
     if (all_done) {
         std::vector<Partial> films;
-        for (const PartFilm& part : parts) films.push_back(*part.film);
+        for (PartFilm& part : parts) films.push_back(std::move(*part.film));
         merged = merge_partials(std::move(films)).film;
     } else {
         for (const PartFilm& part : parts)

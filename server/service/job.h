@@ -78,8 +78,9 @@ private:
     // what they have rendered as it arrives, and ends when every part is done, one fails, or
     // the job is cancelled (which cancels the parts) or suspended (which leaves them running).
     void render_on_farm();
-    // Merges the parts' films into the job's film; returns whether every part is done.
-    bool merge_parts(const std::vector<PartFilm>& parts);
+    // Merges the parts' films into the job's film; returns whether every part is done (their
+    // films are then moved out: the job's film is final).
+    bool merge_parts(std::vector<PartFilm>& parts);
     void end_failed(const std::string& error, const Progress& progress);
     void publish(JobState state, const Progress& progress);
     Progress with_earlier_time(Progress p) const;

@@ -115,8 +115,8 @@ cluster_kill_node() {  # DIR NODE: the node's slurmd, its job steps and their ta
     grep -qz "^SLURMD_NODENAME=$node$" "/proc/$p/environ" 2> /dev/null && echo "$p"
   done)
   pids="$(cat "$dir/slurmd-$node.pid") $tasks"
-  for p in $tasks; do  # the node's steps: the parents of its tasks
-    pids="$pids $(ps -o ppid= -p "$p" 2> /dev/null | tr -d ' ')"
+  for p in $tasks; do  # the node's steps: the parents of its tasks (ppid: the field after the state)
+    pids="$pids $(sed 's/.*) [A-Za-z] \([0-9]*\).*/\1/' "/proc/$p/stat" 2> /dev/null)"
   done
   kill -9 $pids 2> /dev/null || true
 }
