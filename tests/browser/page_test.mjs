@@ -3,24 +3,9 @@
 // twice, zooms and pans, saves a screenshot, cancels, and sees a server error shown next to the
 // scene field. Then stops the server with SIGTERM and expects a clean exit.
 // Usage: node page_test.mjs GLINT_BINARY SOURCE_DIR SCREENSHOT.png
-import { check, finish, launchBrowser, startServer, waitFor } from "./support.mjs";
+import { check, finish, imageHash, launchBrowser, startServer, waitFor } from "./support.mjs";
 
 const [glint, source, screenshot] = process.argv.slice(2);
-
-// A hash of the image's current pixels (for a multipart <img>, its current frame).
-function imageHash() {
-  const img = document.getElementById("image");
-  if (!img.complete || !img.naturalWidth) return null;
-  const canvas = document.createElement("canvas");
-  canvas.width = img.naturalWidth;
-  canvas.height = img.naturalHeight;
-  const ctx = canvas.getContext("2d");
-  ctx.drawImage(img, 0, 0);
-  const data = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
-  let h = 0;
-  for (let i = 0; i < data.length; i += 3) h = (h * 31 + data[i]) >>> 0;
-  return `${canvas.width}x${canvas.height}:${h}`;
-}
 
 let browser, server, exited;
 try {

@@ -20,6 +20,22 @@ export function freePort() {
   });
 }
 
+// A hash of the #image element's current pixels (for a multipart <img>, its current frame), for
+// page.evaluate: "WxH:hash", or null before the first frame.
+export function imageHash() {
+  const img = document.getElementById("image");
+  if (!img.complete || !img.naturalWidth) return null;
+  const canvas = document.createElement("canvas");
+  canvas.width = img.naturalWidth;
+  canvas.height = img.naturalHeight;
+  const ctx = canvas.getContext("2d");
+  ctx.drawImage(img, 0, 0);
+  const data = ctx.getImageData(0, 0, canvas.width, canvas.height).data;
+  let h = 0;
+  for (let i = 0; i < data.length; i += 3) h = (h * 31 + data[i]) >>> 0;
+  return `${canvas.width}x${canvas.height}:${h}`;
+}
+
 export async function waitFor(predicate, ms, what) {
   const deadline = Date.now() + ms;
   while (Date.now() < deadline) {
