@@ -16,10 +16,14 @@ ThreadPool::~ThreadPool() {
     for (std::thread& t : workers_) t.join();
 }
 
-void ThreadPool::parallel_for(size_t count, const std::function<void(size_t)>& task) {
+void ThreadPool::parallel_for(size_t count, const std::function<void(size_t)>& task,
+                              const std::atomic<double>* weight) {
     if (count == 0) return;
-    auto batch = std::make_shared<Batch>(Batch{&task, count});
+    auto batch = std::make_shared<Batch>(Batch{&task, count, weight});
     std::unique_lock lock(mutex_);
+    // As if it had just had a turn: it goes after the batches due before its own next turn.
+    batch->time = now_ + 1 / weight_of(*batch);
+    batch->order = arrivals_++;
     batches_.push_back(batch);
     work_ready_.notify_all();
     batch_done_.wait(lock, [&] { return batch->finished == batch->count; });
@@ -30,16 +34,29 @@ size_t ThreadPool::pending_batches() const {
     return batches_.size();
 }
 
+double ThreadPool::weight_of(const Batch& batch) {
+    const double w = batch.weight ? batch.weight->load(std::memory_order_relaxed) : 1.0;
+    return w > 0 ? w : 1.0;
+}
+
+std::shared_ptr<ThreadPool::Batch> ThreadPool::take_turn() {
+    auto due = batches_.begin();
+    for (auto it = batches_.begin(); it != batches_.end(); ++it)
+        if ((*it)->time < (*due)->time || ((*it)->time == (*due)->time && (*it)->order < (*due)->order)) due = it;
+    std::shared_ptr<Batch> batch = *due;
+    now_ = batch->time;
+    batch->time += 1 / weight_of(*batch);
+    if (++batch->next == batch->count) batches_.erase(due);
+    return batch;
+}
+
 void ThreadPool::work() {
     std::unique_lock lock(mutex_);
     for (;;) {
         work_ready_.wait(lock, [&] { return stopping_ || !batches_.empty(); });
         if (batches_.empty()) return;  // stopping, and nothing left to do
-        // Take one index from the front batch, then send that batch to the back of the line.
-        std::shared_ptr<Batch> batch = batches_.front();
-        batches_.pop_front();
-        const size_t index = batch->next++;
-        if (batch->next < batch->count) batches_.push_back(batch);
+        std::shared_ptr<Batch> batch = take_turn();
+        const size_t index = batch->next - 1;
         lock.unlock();
         (*batch->task)(index);
         lock.lock();

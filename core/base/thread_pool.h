@@ -1,11 +1,16 @@
 // A fixed set of worker threads shared by every job. Callers hand it batches of independent
-// tasks; workers take tasks round-robin across the waiting batches, so several jobs rendering
-// at once each advance and a small job is not stuck behind a large one.
+// tasks; workers share their turns among the waiting batches in proportion to the batches'
+// weights (stride scheduling: each batch keeps a virtual time that advances by 1 / weight per
+// task handed out, and the batch with the earliest time goes next, the oldest on a tie). With
+// equal weights that is round-robin: several jobs rendering at once each advance, and a small
+// job is not stuck behind a large one; a batch of weight 2 gets twice the turns of one of
+// weight 1, and every batch with a weight above 0 keeps getting turns.
 #pragma once
 
+#include <atomic>
 #include <condition_variable>
+#include <cstdint>
 #include <cstddef>
-#include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -26,21 +31,32 @@ public:
     size_t pending_batches() const;
 
     // Runs task(i) for every i in [0, count) on the workers and returns when all have finished.
-    // Must not be called from inside a task (the caller only waits).
-    void parallel_for(size_t count, const std::function<void(size_t)>& task);
+    // Must not be called from inside a task (the caller only waits). `weight` (> 0; null: 1) is
+    // read at every turn, so a caller may change it while the batch runs.
+    void parallel_for(size_t count, const std::function<void(size_t)>& task,
+                      const std::atomic<double>* weight = nullptr);
 
 private:
     struct Batch {
         const std::function<void(size_t)>* task;
         size_t count;
+        const std::atomic<double>* weight;
+        double time = 0;      // virtual time of its next turn
+        uint64_t order = 0;   // arrival, for ties
         size_t next = 0;      // next index to hand out
         size_t finished = 0;  // tasks completed
     };
     void work();
+    // Under mutex_: the waiting batch whose turn it is, advanced past that turn; removed from
+    // the waiting ones when this was its last index.
+    std::shared_ptr<Batch> take_turn();
+    static double weight_of(const Batch& batch);
 
     mutable std::mutex mutex_;
     std::condition_variable work_ready_, batch_done_;
-    std::deque<std::shared_ptr<Batch>> batches_;  // batches with indices left to hand out
+    std::vector<std::shared_ptr<Batch>> batches_;  // batches with indices left to hand out
+    double now_ = 0;                                // virtual time of the last turn
+    uint64_t arrivals_ = 0;
     bool stopping_ = false;
     std::vector<std::thread> workers_;
 };

@@ -10,6 +10,20 @@ namespace {
                      "must be in " + film_range(field, limits).text());
 }
 
+void check_stop_condition(const char* path, double value) {
+    if (!(value >= 0) || !std::isfinite(value)) throw SceneError(path, "must be a finite number >= 0 (0: off)");
+}
+
+void check_region(const RenderSettings& s) {
+    if (s.whole_image()) return;
+    const Region& r = s.region;
+    if (!(r.x0 >= 0 && r.x0 < r.x1 && r.x1 <= s.width && r.y0 >= 0 && r.y0 < r.y1 && r.y1 <= s.height))
+        throw SceneError("film.region", "[" + std::to_string(r.x0) + ", " + std::to_string(r.y0) + ", " +
+                                            std::to_string(r.x1) + ", " + std::to_string(r.y1) +
+                                            "] must satisfy 0 <= x0 < x1 <= width (" + std::to_string(s.width) +
+                                            ") and 0 <= y0 < y1 <= height (" + std::to_string(s.height) + ")");
+}
+
 }  // namespace
 
 std::string IntegerRange::text() const {
@@ -49,6 +63,7 @@ void apply_film_overrides(const FilmOverrides& o, RenderSettings& s, const Scene
     if (o.first_sample) s.first_sample = *o.first_sample;
     if (o.target_error) s.target_error = *o.target_error;
     if (o.time_limit) s.time_limit = *o.time_limit;
+    if (o.region) s.region = *o.region;
     check_settings(s, limits);
 }
 
@@ -66,10 +81,9 @@ void check_settings(const RenderSettings& s, const SceneLimits& limits) {
         throw SceneError("--samples", "must start at a multiple of " +
                                           std::to_string(samples_per_round(s.filter)) +
                                           " (the tent filter renders whole rounds of 4 subpixels)");
-    if (!(s.target_error >= 0) || !std::isfinite(s.target_error))
-        throw SceneError("target_error", "must be >= 0");
-    if (!(s.time_limit >= 0) || !std::isfinite(s.time_limit))
-        throw SceneError("time_limit", "must be >= 0");
+    check_stop_condition("film.target_error", s.target_error);
+    check_stop_condition("film.time_limit", s.time_limit);
+    check_region(s);
 }
 
 }  // namespace glint

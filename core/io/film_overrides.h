@@ -38,6 +38,7 @@ struct FilmOverrides {
     std::optional<Encoding> encoding;
     std::optional<uint32_t> first_sample;
     std::optional<double> target_error, time_limit;
+    std::optional<Region> region;
 };
 
 // Applies the overrides to `settings`, then checks the result with check_settings().

@@ -153,7 +153,8 @@ private:
     }
 
     RenderSettings parse_film(const At& at, Rgb& background) const {
-        at.expect_object({"width", "height", "spp", "filter", "sampler", "background", "encoding", "seed"});
+        at.expect_object({"width", "height", "spp", "filter", "sampler", "background", "encoding", "seed", "time_limit",
+                          "target_error", "region"});
         RenderSettings s;
         if (at.has("width")) s.width = int(film_integer(at, FilmInteger::width));
         if (at.has("height")) s.height = int(film_integer(at, FilmInteger::height));
@@ -165,7 +166,19 @@ private:
         if (at.has("encoding"))
             s.encoding = encoding_named(at["encoding"].choice({"gamma2.2", "srgb"}));
         if (at.has("seed")) s.seed = uint64_t(film_integer(at, FilmInteger::seed));
+        // Checked with the rest by check_settings(), as the command line's and a request's are.
+        if (at.has("time_limit")) s.time_limit = at["time_limit"].number();
+        if (at.has("target_error")) s.target_error = at["target_error"].number();
+        if (at.has("region")) s.region = region(at["region"]);
         return s;
+    }
+
+    // [x0, y0, x1, y1]: pixels, rows from the top; check_region() checks it against the size.
+    Region region(const At& at) const {
+        if (!at.value.is_array() || at.value.size() != 4) at.fail("must be an array [x0, y0, x1, y1] of 4 integers");
+        int v[4];
+        for (size_t i = 0; i < 4; ++i) v[i] = int(at.item(i).integer(0, limits_.max_dimension));
+        return {v[0], v[1], v[2], v[3]};
     }
 
     int64_t film_integer(const At& film, FilmInteger field) const {

@@ -14,19 +14,20 @@ void LightTracer::splat(const LightVertex& v, double w) const {
     shadow.tmax = proj.distance - camera_.near();  // camera rays start `near` from the eye
     if (scene_.geometry().occluded(shadow, si.prim)) return;
     // Diffuse f = albedo/π; dω at the eye = |cos| dA / distance².
-    const double pixels = double(film_.width()) * film_.height();
+    const double pixels = double(width_) * height_;
     const Rgb value = v.beta * v.albedo *
                       (w * std::fabs(cos_eye) / (kPi * proj.distance * proj.distance) * proj.importance / pixels);
-    // The pixels whose filter footprint holds (fx, fy); y counts from the bottom here.
+    // The pixels whose filter footprint holds (fx, fy), within the window; y counts from the
+    // bottom here, rows from the top in the window.
     const double margin = filter_margin(filter_);
-    const int x0 = std::max(0, int(std::ceil(proj.fx - 1 - margin)));
-    const int x1 = std::min(film_.width() - 1, int(std::floor(proj.fx + margin)));
-    const int y0 = std::max(0, int(std::ceil(proj.fy - 1 - margin)));
-    const int y1 = std::min(film_.height() - 1, int(std::floor(proj.fy + margin)));
+    const int x0 = std::max(window_.x0, int(std::ceil(proj.fx - 1 - margin)));
+    const int x1 = std::min(window_.x1 - 1, int(std::floor(proj.fx + margin)));
+    const int y0 = std::max(height_ - window_.y1, int(std::ceil(proj.fy - 1 - margin)));
+    const int y1 = std::min(height_ - 1 - window_.y0, int(std::floor(proj.fy + margin)));
     for (int row = y0; row <= y1; ++row)
         for (int x = x0; x <= x1; ++x) {
             const double f = filter_density(filter_, proj.fx - x, proj.fy - row);
-            if (f > 0) film_.splat(x, film_.height() - 1 - row, value * f);
+            if (f > 0) film_.splat(x - window_.x0, height_ - 1 - row - window_.y0, value * f);
         }
 }
 

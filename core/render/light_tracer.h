@@ -27,6 +27,7 @@
 
 #include "scene/camera.h"
 #include "render/film.h"
+#include "render/settings.h"
 #include "render/filter.h"
 #include "base/rng.h"
 #include "render/strategies.h"
@@ -55,9 +56,12 @@ inline const LightPath kNoLightPath{};
 
 class LightTracer {
 public:
-    // `strategies`: the path tracer's, whose CausticEmitter starts the light paths.
-    LightTracer(const Scene& scene, const Strategies& strategies, const Camera& camera, Filter filter, Film& film)
-        : scene_(scene), strategies_(strategies), camera_(camera), filter_(filter), film_(film) {}
+    // `strategies`: the path tracer's, whose CausticEmitter starts the light paths. The image
+    // is width × height pixels; `film` holds its pixels in `window` (splats elsewhere are left out).
+    LightTracer(const Scene& scene, const Strategies& strategies, const Camera& camera, Filter filter, int width,
+                int height, const Region& window, Film& film)
+        : scene_(scene), strategies_(strategies), camera_(camera), filter_(filter), width_(width), height_(height),
+          window_(window), film_(film) {}
 
     // One light path: its connections to the eye go to the film as splats; its diffuse
     // vertices are returned for the camera path to connect to. Thread-safe.
@@ -76,6 +80,8 @@ private:
     const Strategies& strategies_;
     const Camera& camera_;
     Filter filter_;
+    int width_, height_;
+    Region window_;
     Film& film_;
 };
 

@@ -24,11 +24,17 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
       settings_(settings),
       camera_(scene_->camera(), settings.width, settings.height),
       tracer_(*scene_, camera_),
-      film_(settings.width, settings.height),
-      light_tracer_(*scene_, tracer_.strategies(), camera_, settings.filter, film_),
+      film_(settings.window().width(), settings.window().height()),
+      light_tracer_(*scene_, tracer_.strategies(), camera_, settings.filter, settings.width, settings.height,
+                    settings.window(), film_),
       direct_view_(*scene_, camera_, settings.filter, settings.width, settings.height, scene_->integrator().direct_view_rays),
-      tiles_x_((settings.width + kTileSize - 1) / kTileSize),
-      tiles_y_((settings.height + kTileSize - 1) / kTileSize) {
+      // A pixel's light paths splat anywhere in the image: a window gets every splat a whole
+      // render would give it only if every pixel's light paths are traced.
+      traced_(tracer_.strategies().light_tracing() ? Region{0, 0, settings.width, settings.height} : settings.window()),
+      tile_x0_(traced_.x0 / kTileSize),
+      tile_y0_(traced_.y0 / kTileSize),
+      tiles_x_((traced_.x1 + kTileSize - 1) / kTileSize - tile_x0_),
+      tiles_y_((traced_.y1 + kTileSize - 1) / kTileSize - tile_y0_) {
     const uint32_t round = samples_per_round(settings_.filter);
     settings_.spp = std::max(round, (settings_.spp + round - 1) / round * round);
     if (settings_.first_sample % round != 0)
@@ -79,35 +85,57 @@ Rgb RenderJob::direct_view(int x, int y, uint32_t index, const PixelSampler& sam
 
 bool RenderJob::should_stop() const { return cancelled_ || Clock::now() >= deadline_; }
 
+Region RenderJob::tile_pixels(size_t tile) const {
+    const int x0 = (tile_x0_ + int(tile % tiles_x_)) * kTileSize, y0 = (tile_y0_ + int(tile / tiles_x_)) * kTileSize;
+    return {std::max(x0, traced_.x0), std::max(y0, traced_.y0), std::min(x0 + kTileSize, traced_.x1),
+            std::min(y0 + kTileSize, traced_.y1)};
+}
+
+// Tiles lie on the whole image's grid, so a window's pixels and a whole render's see the same
+// tiles; nothing depends on the tiling but the order in which pixels are done.
 bool RenderJob::render_tile(size_t tile, uint32_t first, uint32_t last) {
     if (should_stop()) return false;
-    const int x0 = int(tile % tiles_x_) * kTileSize, y0 = int(tile / tiles_x_) * kTileSize;
-    const int x1 = std::min(x0 + kTileSize, settings_.width), y1 = std::min(y0 + kTileSize, settings_.height);
+    const Region pixels = tile_pixels(tile), window = settings_.window();
     // A round at a time: the film takes the error estimate's variance from whole rounds.
     const uint32_t round = samples_per_round(settings_.filter);
     std::array<Rgb, kMaxSamplesPerRound> values;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x)
+    for (int y = pixels.y0; y < pixels.y1; ++y)
+        for (int x = pixels.x0; x < pixels.x1; ++x) {
+            if (!window.contains(x, y)) {
+                trace_light_paths(x, y, first, last);
+                continue;
+            }
             for (uint32_t s = first; s < last; s += round) {
                 for (uint32_t i = 0; i < round; ++i) values[i] = sample(x, y, s + i);
-                film_.add_round(x, y, std::span(values.data(), round), first_replicate(s, round));
+                film_.add_round(x - window.x0, y - window.y0, std::span(values.data(), round),
+                                first_replicate(s, round));
             }
+        }
     return true;
+}
+
+void RenderJob::trace_light_paths(int x, int y, uint32_t first, uint32_t last) const {
+    const uint64_t pixel = uint64_t(y) * settings_.width + x;
+    for (uint32_t index = first; index < last; ++index) {
+        Rng rng = light_path_stream(settings_.seed, pixel, index);
+        light_tracer_.trace(rng);
+    }
 }
 
 bool RenderJob::render_pass(ThreadPool& pool, uint32_t first, uint32_t last) {
     if (direct_view_.active() && !direct_view_decided_) {
         pool.parallel_for(size_t(tiles_x_) * tiles_y_, [&](size_t tile) {
-            const int x0 = int(tile % tiles_x_) * kTileSize, y0 = int(tile / tiles_x_) * kTileSize;
-            direct_view_.decide(tracer_, camera_, x0, y0, std::min(x0 + kTileSize, settings_.width),
-                                std::min(y0 + kTileSize, settings_.height));
-        });
+            const Region window = settings_.window(), t = tile_pixels(tile);
+            const Region in{std::max(t.x0, window.x0), std::max(t.y0, window.y0), std::min(t.x1, window.x1),
+                            std::min(t.y1, window.y1)};
+            if (in.width() > 0 && in.height() > 0) direct_view_.decide(tracer_, camera_, in.x0, in.y0, in.x1, in.y1);
+        }, &weight_);
         direct_view_decided_ = true;
     }
     std::atomic<size_t> skipped{0};
     pool.parallel_for(size_t(tiles_x_) * tiles_y_, [&](size_t tile) {
         if (!render_tile(tile, first, last)) ++skipped;
-    });
+    }, &weight_);
     return skipped == 0;
 }
 
@@ -116,7 +144,8 @@ Progress RenderJob::progress() const {
     p.spp_done = spp_done_;
     p.spp_target = settings_.spp;
     p.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
-    p.samples_per_second = p.seconds > 0 ? double(spp_done_ - spp_at_start_) * settings_.width * settings_.height / p.seconds : 0;
+    p.samples_per_second =
+        p.seconds > 0 ? double(spp_done_ - spp_at_start_) * film_.width() * film_.height() / p.seconds : 0;
     p.error_estimate = film_.error_estimate();
     p.dropped = film_.dropped();
     return p;
@@ -134,10 +163,10 @@ uint32_t RenderJob::next_pass_size(uint32_t previous) const {
 }
 
 void RenderJob::resume(Film film, uint32_t spp_done) {
-    if (film.width() != settings_.width || film.height() != settings_.height)
+    if (film.width() != film_.width() || film.height() != film_.height())
         throw std::invalid_argument("the checkpoint's film is " + std::to_string(film.width()) + "x" +
-                                    std::to_string(film.height()) + ", the job's " + std::to_string(settings_.width) +
-                                    "x" + std::to_string(settings_.height));
+                                    std::to_string(film.height()) + ", the job's " + std::to_string(film_.width()) +
+                                    "x" + std::to_string(film_.height()));
     if (spp_done > settings_.spp || spp_done % samples_per_round(settings_.filter) != 0)
         throw std::invalid_argument("the checkpoint's " + std::to_string(spp_done) + " spp do not fit the job's " +
                                     std::to_string(settings_.spp));
@@ -145,8 +174,30 @@ void RenderJob::resume(Film film, uint32_t spp_done) {
     spp_done_ = spp_done;
 }
 
-StopReason RenderJob::run(ThreadPool& pool, const std::function<void(const Progress&)>& on_pass) {
+Image RenderJob::preview(ThreadPool& pool) const {
+    const Region window = settings_.window();
+    Image image(window.width(), window.height());
+    const bool sobol = settings_.sampler == Sampler::sobol;
+    const uint32_t index = settings_.first_sample;
+    pool.parallel_for(size_t(window.height()), [&](size_t row) {
+        const int y = window.y0 + int(row);
+        for (int x = window.x0; x < window.x1; ++x) {
+            const uint64_t pixel = uint64_t(y) * settings_.width + x;
+            Rng rng = camera_stream(settings_.seed, pixel, index);
+            const PixelSampler sampler(settings_.seed, pixel, samples_per_round(settings_.filter));
+            const StratifiedSample stratified = sobol ? sampler.sample(index) : StratifiedSample{};
+            const Ray ray = camera_ray(x, y, index, sobol ? stratified.film : nullptr, rng);
+            const Rgb value = tracer_.radiance(ray, rng, kNoLightPath, sobol ? &stratified.first : nullptr);
+            image.set(x - window.x0, int(row), is_finite(value) ? value : Rgb{0});
+        }
+    }, &weight_);
+    return image;
+}
+
+StopReason RenderJob::run(ThreadPool& pool, const std::function<void(const Progress&)>& on_pass,
+                          const std::function<void(const Image&)>& on_preview) {
     start_ = Clock::now();
+    if (on_preview && spp_done_ == 0) on_preview(preview(pool));
     spp_at_start_ = spp_done_;
     if (settings_.time_limit > 0)
         deadline_ = start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(settings_.time_limit));

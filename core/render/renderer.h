@@ -36,10 +36,18 @@ class RenderJob {
 public:
     RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& settings);
 
-    // Renders until a stop condition, calling on_pass after every pass (from this thread).
-    StopReason run(ThreadPool& pool, const std::function<void(const Progress&)>& on_pass = {});
+    // Renders until a stop condition, calling on_pass after every pass (from this thread). With
+    // on_preview, a job that starts from no samples first shows preview() through it.
+    StopReason run(ThreadPool& pool, const std::function<void(const Progress&)>& on_pass = {},
+                   const std::function<void(const Image&)>& on_preview = {});
     // Thread-safe: the pass in progress stops after the tiles already being rendered.
     void cancel() { cancelled_ = true; }
+    // Thread-safe: the job's share of the pool's turns against other jobs' (thread_pool.h).
+    void set_weight(double weight) { weight_ = weight; }
+
+    // A first look at the image, at a quarter of the cost of the first pass: one camera path
+    // per pixel, without light tracing. Thrown away once shown: the film never sees it.
+    Image preview(ThreadPool& pool) const;
     // Continues from a checkpoint taken between passes: `film` holds samples [first_sample,
     // first_sample + spp_done) of every pixel, added in sample order, so run() adds the rest in
     // the order an uninterrupted run would and the sums come out bit-identical. Call before
@@ -65,7 +73,12 @@ private:
     // A camera ray for sample `index` of pixel (x, y), through the film position `film` picks in
     // the sample's subpixel (nullptr: two numbers from rng pick it), and a lens point from rng.
     Ray camera_ray(int x, int y, uint32_t index, const double* film, Rng& rng) const;
+    // The pixels of tile `tile` (of tiles_x_ × tiles_y_ over traced_).
+    Region tile_pixels(size_t tile) const;
     bool render_tile(size_t tile, uint32_t first, uint32_t last);
+    // Samples [first, last) of pixel (x, y) outside the window: their light paths only, for
+    // the splats they leave in the window.
+    void trace_light_paths(int x, int y, uint32_t first, uint32_t last) const;
     bool should_stop() const;
     uint32_t next_pass_size(uint32_t previous) const;
 
@@ -77,10 +90,12 @@ private:
     LightTracer light_tracer_;
     DirectViewSplit direct_view_;
     bool direct_view_decided_ = false;
-    int tiles_x_, tiles_y_;
+    Region traced_;  // the pixels whose samples are traced: the window, or with light tracing all
+    int tile_x0_, tile_y0_, tiles_x_, tiles_y_;
     uint32_t spp_done_ = 0;
     uint32_t spp_at_start_ = 0;  // samples resumed from, left out of the rate
     std::atomic<bool> cancelled_{false};
+    std::atomic<double> weight_{1};
     Clock::time_point start_{}, deadline_ = Clock::time_point::max();
 };
 

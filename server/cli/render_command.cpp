@@ -30,7 +30,8 @@ struct RenderOptions {
     std::optional<uint64_t> seed;
     std::optional<std::string> encoding;
     unsigned threads = 0;
-    double target_error = 0, time_limit = 0;
+    std::optional<double> target_error, time_limit;
+    std::vector<int> region;  // x0, y0, x1, y1, when given
 };
 
 // Where one scene's results go.
@@ -67,6 +68,7 @@ FilmOverrides film_overrides(const RenderOptions& o) {
     if (!o.samples.empty()) apply_sample_range(o.samples, f);
     f.target_error = o.target_error;
     f.time_limit = o.time_limit;
+    if (!o.region.empty()) f.region = Region{o.region[0], o.region[1], o.region[2], o.region[3]};
     return f;
 }
 
@@ -236,8 +238,14 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--threads", o->threads, "Render threads (default: all cores)");
     cmd->add_option("--seed", o->seed, "Random seed (film.seed)");
     cmd->add_option("--encoding", o->encoding, "PNG encoding (film.encoding)")->check(CLI::IsMember({"gamma2.2", "srgb"}));
-    cmd->add_option("--target-error", o->target_error, "Stop once the estimated RMSE is at most this")->check(CLI::NonNegativeNumber);
-    cmd->add_option("--time-limit", o->time_limit, "Stop after this many seconds")->check(CLI::NonNegativeNumber);
+    // Checked by check_settings(), with the scene file's and a job request's values.
+    cmd->add_option("--target-error", o->target_error,
+                    "Stop once the estimated RMSE is at most this (film.target_error; >= 0, 0: off)");
+    cmd->add_option("--time-limit", o->time_limit, "Stop after this many seconds (film.time_limit; >= 0, 0: off)");
+    cmd->add_option("--region", o->region,
+                    "Render only the window X0,Y0,X1,Y1 (pixels, rows from the top, X1 and Y1 excluded; film.region)")
+        ->delimiter(',')
+        ->expected(4);
     return [o] { return run_render(*o); };
 }
 

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <future>
 #include <string>
@@ -54,6 +55,44 @@ TEST(ThreadPool, BatchesTakeTurns) {
     a.join();
     b.join();
     EXPECT_EQ(order, "aababababb");
+}
+
+TEST(ThreadPool, TurnsFollowTheBatchesWeights) {
+    // One worker held by a gate batch while batches of weight 1 and 3 arrive: once released, the
+    // worker hands out three of the heavier batch's tasks for each of the lighter's, counted
+    // over the tasks both still had, and a weight changed mid-batch takes effect at once.
+    ThreadPool pool(1);
+    std::mutex mutex;
+    std::string order;
+    std::promise<void> gate_started, release;
+    std::shared_future<void> go = release.get_future().share();
+    std::thread gate([&] {
+        pool.parallel_for(1, [&](size_t) {
+            gate_started.set_value();
+            go.wait();
+        });
+    });
+    gate_started.get_future().wait();
+    std::atomic<double> light{1}, heavy{3};
+    auto batch = [&](char c, std::atomic<double>* weight) {
+        return std::thread([&, c, weight] {
+            pool.parallel_for(40, [&, c](size_t) {
+                std::lock_guard lock(mutex);
+                order += c;
+                if (order.size() == 40) light = 3;  // from here on, equal shares
+            }, weight);
+        });
+    };
+    std::thread a = batch('a', &light), b = batch('b', &heavy);
+    while (pool.pending_batches() < 2) std::this_thread::yield();
+    release.set_value();
+    for (std::thread* t : {&gate, &a, &b}) t->join();
+    ASSERT_EQ(order.size(), 80u);
+    const auto count = [&](size_t from, size_t to, char c) { return std::count(order.begin() + from, order.begin() + to, c); };
+    EXPECT_EQ(count(0, 40, 'b'), 30) << order;
+    EXPECT_EQ(count(0, 40, 'a'), 10) << order;
+    EXPECT_EQ(count(40, 60, 'a'), 10) << order;  // equal weights: round-robin
+    EXPECT_EQ(count(40, 60, 'b'), 10) << order;
 }
 
 }  // namespace

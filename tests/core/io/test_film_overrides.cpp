@@ -55,7 +55,7 @@ TEST(FilmOverrides, EachFaultNamesItsField) {
     EXPECT_EQ(error_of([](FilmOverrides& o) { o.first_sample = 2; }),
               "--samples: must start at a multiple of 4 (the tent filter renders whole rounds of 4 "
               "subpixels)");
-    EXPECT_EQ(error_of([](FilmOverrides& o) { o.time_limit = -1; }), "time_limit: must be >= 0");
+    EXPECT_EQ(error_of([](FilmOverrides& o) { o.time_limit = -1; }), "film.time_limit: must be a finite number >= 0 (0: off)");
     EXPECT_EQ(error_of([](FilmOverrides& o) { o.seed = UINT64_MAX; }), "no error");
 }
 
