@@ -26,6 +26,10 @@ struct Image {
     }
 };
 
+// The image made smaller by a whole factor, the least that fits it in max_width × max_height,
+// each pixel the mean of its block (a thumbnail); an image that fits already is returned as is.
+Image downscale(const Image& image, int max_width, int max_height);
+
 // Root-mean-square difference over all pixels and channels; images must match in size.
 double rmse(const Image& a, const Image& b);
 

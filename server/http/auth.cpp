@@ -26,7 +26,8 @@ bool needs_token(const std::string& path) { return path == "/render" || path == 
 bool token_in_query_allowed(const httplib::Request& req) {
     const std::string& p = req.path;
     return (req.method == "GET" || req.method == "HEAD") &&
-           (p.ends_with("/stream") || p.ends_with("/events") || p.ends_with("/image.png") || p.ends_with("/image.pfm"));
+           (p.ends_with("/stream") || p.ends_with("/events") || p.ends_with("/image.png") || p.ends_with("/image.pfm") ||
+            p.ends_with("/thumbnail.png"));
 }
 
 std::string check_token(const httplib::Request& req, const std::string& token) {

@@ -8,6 +8,7 @@
 #include "http/auth.h"
 #include "http/error_response.h"
 #include "http/guarded_server.h"
+#include "http/job_patch.h"
 #include "http/job_request.h"
 #include "http/job_view.h"
 #include "http/static_files.h"
@@ -19,6 +20,8 @@ using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 constexpr auto kPoll = 250ms;  // how often a waiting stream looks at its client and the job
 constexpr auto kPing = 15s;    // SSE comment that keeps proxies from closing an idle stream
+// A jobs list's thumbnails: small enough that a page can list many jobs cheaply.
+constexpr int kThumbnailWidth = 128, kThumbnailHeight = 96;
 
 void send_json(httplib::Response& res, const nlohmann::json& body, int status = 200) {
     res.status = status;
@@ -61,7 +64,8 @@ std::shared_ptr<Job> HttpApi::job_or_404(const httplib::Request& req, httplib::R
 // Parses and queues the job a request describes, or answers with the error and returns null.
 std::shared_ptr<Job> HttpApi::accept(const httplib::Request& req, httplib::Response& res) {
     try {
-        return jobs_.submit(parse_job_request(req.body, scenes_, scene_limits_), req.body);
+        const JobRequest request = parse_job_request(req.body, scenes_, scene_limits_);
+        return jobs_.submit(request.scene, req.body, request.priority);
     } catch (const ServiceError& e) {
         send_error(res, e);
     }
@@ -72,6 +76,21 @@ void HttpApi::submit(const httplib::Request& req, httplib::Response& res) {
     if (auto job = accept(req, res)) {
         res.set_header("Location", job_url(job->id()));
         send_json(res, job_status(*job), 202);
+    }
+}
+
+// {"priority": n}: a queued job moves in the queue, a running one changes its share of the
+// render threads at once; an ended job has nothing left to change (409).
+void HttpApi::patch(const httplib::Request& req, httplib::Response& res) {
+    auto job = job_or_404(req, res);
+    if (!job) return;
+    try {
+        const JobPatch patch = parse_job_patch(req.body);
+        if (patch.priority && !job->set_priority(*patch.priority))
+            return send_error(res, 409, "the job has ended: its priority no longer matters");
+        send_json(res, job_status(*job));
+    } catch (const ServiceError& e) {
+        send_error(res, e);
     }
 }
 
@@ -181,6 +200,7 @@ void HttpApi::install(httplib::Server& server) {
     install_limits(server);
     install_hooks(server);
     install_job_routes(server);
+    install_image_routes(server);
     install_other_routes(server);
 }
 
@@ -252,12 +272,26 @@ void HttpApi::install_job_routes(httplib::Server& server) {
     server.Get(job, [this](const Req& req, Res& res) {
         if (auto j = job_or_404(req, res)) send_json(res, job_status(*j));
     });
+    server.Patch(job, [this](const Req& req, Res& res) { patch(req, res); });
     server.Delete(job, [this](const Req& req, Res& res) {
         if (auto j = job_or_404(req, res)) {
             j->cancel();
             send_json(res, job_status(*j));
         }
     });
+    server.Get(job + "/stream", [this](const Req& req, Res& res) {
+        if (auto j = job_or_404(req, res)) stream(req, j, res);
+    });
+    server.Get(job + "/events", [this](const Req& req, Res& res) {
+        if (auto j = job_or_404(req, res)) events(req, j, res);
+    });
+}
+
+// A job's latest frame: PNG, PFM, and a thumbnail for lists of jobs.
+void HttpApi::install_image_routes(httplib::Server& server) {
+    using Req = httplib::Request;
+    using Res = httplib::Response;
+    const std::string job = kJobRoute;
     server.Get(job + "/image.png", [this](const Req& req, Res& res) {
         auto j = job_or_404(req, res);
         if (!j) return;
@@ -273,11 +307,13 @@ void HttpApi::install_job_routes(httplib::Server& server) {
         const std::vector<uint8_t> pfm = encode_pfm(*s.image);
         res.set_content(reinterpret_cast<const char*>(pfm.data()), pfm.size(), "image/x-portable-floatmap");
     });
-    server.Get(job + "/stream", [this](const Req& req, Res& res) {
-        if (auto j = job_or_404(req, res)) stream(req, j, res);
-    });
-    server.Get(job + "/events", [this](const Req& req, Res& res) {
-        if (auto j = job_or_404(req, res)) events(req, j, res);
+    server.Get(job + "/thumbnail.png", [this](const Req& req, Res& res) {
+        auto j = job_or_404(req, res);
+        if (!j) return;
+        const JobSnapshot s = j->snapshot();
+        if (!s.image) return send_error(res, 409, "no pass has finished yet");
+        const std::vector<uint8_t> png = encode_png(downscale(*s.image, kThumbnailWidth, kThumbnailHeight), j->settings().encoding);
+        res.set_content(reinterpret_cast<const char*>(png.data()), png.size(), "image/png");
     });
 }
 

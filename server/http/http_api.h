@@ -29,9 +29,11 @@ private:
     void install_limits(httplib::Server& server) const;
     void install_hooks(httplib::Server& server);
     void install_job_routes(httplib::Server& server);
+    void install_image_routes(httplib::Server& server);
     void install_other_routes(httplib::Server& server);
     void submit(const httplib::Request& req, httplib::Response& res);
     void render(const httplib::Request& req, httplib::Response& res);
+    void patch(const httplib::Request& req, httplib::Response& res);
     void stream(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res);
     void events(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res);
     std::shared_ptr<Job> job_or_404(const httplib::Request& req, httplib::Response& res) const;

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "base/files.h"
+#include "service/priority.h"
 
 namespace glint {
 namespace {
@@ -25,17 +26,40 @@ auto load_checked(F&& f) -> decltype(f()) {
     }
 }
 
-constexpr FilmInteger kOverridable[] = {FilmInteger::width, FilmInteger::height, FilmInteger::spp,
-                                        FilmInteger::seed};
+constexpr const char* kPresetFields[] = {"preset",     "width",        "height",   "spp",   "seed",
+                                         "time_limit", "target_error", "priority", "region"};
 
 void check_preset_fields(const nlohmann::json& request) {
     for (const auto& item : request.items()) {
-        bool known = item.key() == "preset";
-        for (FilmInteger field : kOverridable) known |= item.key() == film_key(field);
-        if (!known)
-            throw InvalidRequest(
-                "unknown field (expected one of: preset, width, height, spp, seed)", item.key());
+        if (std::find_if(std::begin(kPresetFields), std::end(kPresetFields),
+                         [&](const char* key) { return item.key() == key; }) != std::end(kPresetFields))
+            continue;
+        std::string list;
+        for (const char* key : kPresetFields) list += std::string(list.empty() ? "" : ", ") + key;
+        throw InvalidRequest("unknown field (expected one of: " + list + ")", item.key());
     }
+}
+
+// The request's value of `key` if it has one: a number (check_settings() bounds it).
+std::optional<double> number(const nlohmann::json& request, const char* key) {
+    if (!request.contains(key)) return std::nullopt;
+    const nlohmann::json& v = request.at(key);
+    if (!v.is_number()) throw InvalidRequest("must be a number", key);
+    return v.get<double>();
+}
+
+// [x0, y0, x1, y1], as film.region in a scene.
+std::optional<Region> region(const nlohmann::json& request, const SceneLimits& limits) {
+    if (!request.contains("region")) return std::nullopt;
+    const nlohmann::json& v = request.at("region");
+    const auto in_range = [&](const nlohmann::json& e) {
+        return e.is_number_integer() && e.get<int64_t>() >= 0 && e.get<int64_t>() <= limits.max_dimension;
+    };
+    if (!v.is_array() || v.size() != 4 || !std::all_of(v.begin(), v.end(), in_range))
+        throw InvalidRequest("must be an array [x0, y0, x1, y1] of 4 integers in [0, " +
+                                 std::to_string(limits.max_dimension) + "]",
+                             "region");
+    return Region{v[0].get<int>(), v[1].get<int>(), v[2].get<int>(), v[3].get<int>()};
 }
 
 // The request's value of `field` if it has one, an integer within the field's range.
@@ -56,10 +80,13 @@ FilmOverrides overrides_of(const nlohmann::json& request, const SceneLimits& lim
     if (auto h = film_integer(request, FilmInteger::height, limits)) o.height = int(*h);
     if (auto spp = film_integer(request, FilmInteger::spp, limits)) o.spp = uint32_t(*spp);
     if (auto seed = film_integer(request, FilmInteger::seed, limits)) o.seed = uint64_t(*seed);
+    o.time_limit = number(request, "time_limit");
+    o.target_error = number(request, "target_error");
+    o.region = region(request, limits);
     return o;
 }
 
-// {"preset": NAME, "width": W, "height": H, "spp": N, "seed": S}: every override optional.
+// {"preset": NAME, "width": W, ...}: every override optional.
 LoadedScene parse_preset_request(const nlohmann::json& request, const std::filesystem::path& scenes,
                                  const SceneLimits& limits) {
     check_preset_fields(request);
@@ -68,8 +95,25 @@ LoadedScene parse_preset_request(const nlohmann::json& request, const std::files
     if (file.empty()) throw NotFound("no such preset (see GET /presets)", "preset");
     LoadedScene scene = load_checked([&] { return load_scene(file, limits); });
     const FilmOverrides overrides = overrides_of(request, limits);
-    load_checked([&] { apply_film_overrides(overrides, scene.settings, limits); });
+    try {
+        apply_film_overrides(overrides, scene.settings, limits);
+    } catch (const SceneError& e) {
+        // The same check as a scene file's film; here the fields are the request's own.
+        const std::string path = e.path().starts_with("film.") ? e.path().substr(5) : e.path();
+        throw InvalidRequest(e.message(), path);
+    }
     return scene;
+}
+
+// The top-level "priority" of any job body, which is the job's and not the scene's.
+int priority_of(const nlohmann::json& request) {
+    if (!request.is_object() || !request.contains("priority")) return 0;
+    const nlohmann::json& v = request.at("priority");
+    if (!v.is_number_integer() || v.get<int64_t>() < kMinPriority || v.get<int64_t>() > kMaxPriority)
+        throw InvalidRequest("must be an integer in [" + std::to_string(kMinPriority) + ", " +
+                                 std::to_string(kMaxPriority) + "]",
+                             "priority");
+    return v.get<int>();
 }
 
 }  // namespace
@@ -80,8 +124,7 @@ std::filesystem::path preset_path(const std::filesystem::path& scenes, const std
     return std::filesystem::is_regular_file(file) ? file : std::filesystem::path{};
 }
 
-LoadedScene parse_job_request(const std::string& body, const std::filesystem::path& scenes,
-                              const SceneLimits& limits) {
+JobRequest parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits) {
     nlohmann::json request;
     try {
         // Bounded like the scene parser: 16 MiB of '[' would otherwise build 16 M nested arrays.
@@ -97,9 +140,14 @@ LoadedScene parse_job_request(const std::string& body, const std::filesystem::pa
         load_checked([&] { return parse_scene(body, scenes, limits); });
     }
     // Both paths end with check_settings(): parse_scene's own, or apply_film_overrides'.
-    return request.is_object() && request.contains("preset")
-               ? parse_preset_request(request, scenes, limits)
-               : load_checked([&] { return parse_scene(body, scenes, limits); });
+    const int priority = priority_of(request);
+    if (request.is_object() && request.contains("preset"))
+        return {parse_preset_request(request, scenes, limits), priority};
+    if (request.is_object() && request.contains("priority")) {
+        request.erase("priority");
+        return {load_checked([&] { return parse_scene(request.dump(), scenes, limits); }), priority};
+    }
+    return {load_checked([&] { return parse_scene(body, scenes, limits); }), priority};
 }
 
 nlohmann::json list_presets(const std::filesystem::path& scenes) {

@@ -1,6 +1,7 @@
 // What POST /render and POST /jobs accept: a full scene, or {"preset": NAME} with overrides of
-// width, height, spp and seed. Errors are the service's (service/errors.h), with the JSON path
-// they are about; http/error_response.h gives each its status.
+// width, height, spp, seed, time_limit, target_error and region; either may give the job a
+// priority (top level). Errors are the service's (service/errors.h), with the JSON path they
+// are about; http/error_response.h gives each its status.
 #pragma once
 
 #include <filesystem>
@@ -13,9 +14,13 @@
 
 namespace glint {
 
+struct JobRequest {
+    LoadedScene scene;
+    int priority = 0;  // in [kMinPriority, kMaxPriority] (service/priority.h)
+};
+
 // Throws MalformedRequest, InvalidRequest or NotFound (an unknown preset).
-LoadedScene parse_job_request(const std::string& body, const std::filesystem::path& scenes,
-                              const SceneLimits& limits);
+JobRequest parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits);
 
 // The scenes folder's *.json files, by name (file stem), with their descriptions and film sizes.
 nlohmann::json list_presets(const std::filesystem::path& scenes);

@@ -1,5 +1,8 @@
 #include "http/job_view.h"
 
+#include <chrono>
+
+#include "service/job_state.h"
 #include "service/progress_json.h"
 
 namespace glint {
@@ -24,8 +27,22 @@ nlohmann::json job_status(const Job& job) {
           {"png", self + "/image.png"},
           {"pfm", self + "/image.pfm"},
           {"stream", self + "/stream"},
-          {"events", self + "/events"}}},
+          {"events", self + "/events"},
+          {"thumbnail", self + "/thumbnail.png"}}},
+        {"priority", job.priority()},
+        {"stop_reason", s.stop ? nlohmann::json(stop_reason_name(*s.stop)) : nlohmann::json()},
+        {"time_limit", job.settings().time_limit},
+        {"target_error", job.settings().target_error},
+        {"created", std::chrono::duration<double>(job.created().time_since_epoch()).count()},
     });
+    if (!job.settings().whole_image()) {
+        const Region& r = job.settings().region;
+        j["width"] = r.width();
+        j["height"] = r.height();
+        j["region"] = {{"x0", r.x0}, {"y0", r.y0}, {"x1", r.x1}, {"y1", r.y1},
+                       {"full_width", job.settings().width}, {"full_height", job.settings().height}};
+    }
+    if (s.preview) j["preview"] = true;
     if (s.parts)
         j["parts"] = {{"queued", s.parts->queued}, {"running", s.parts->running}, {"done", s.parts->done},
                       {"requeued", s.parts->requeued}};

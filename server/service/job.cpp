@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "io/fingerprint.h"
+#include "service/priority.h"
 
 namespace glint {
 
@@ -20,9 +21,10 @@ uint32_t most_samples(const Film& film) {
 }  // namespace
 
 Job::Job(std::string id, const LoadedScene& scene, const JobStore* store, std::chrono::system_clock::time_point created,
-         FarmJob farm)
+         FarmJob farm, int priority)
     : id_(std::move(id)), render_(scene.scene, scene.settings), created_(created), warnings_(scene.warnings), store_(store),
-      farm_(std::move(farm)) {
+      priority_(priority), farm_(std::move(farm)) {
+    render_.set_weight(priority_weight(priority));
     snapshot_.progress.spp_target = render_.settings().spp;
     if (store_ || on_farm()) fingerprint_ = fingerprint(*scene.scene, scene.settings);
 }
@@ -32,10 +34,22 @@ Progress Job::with_earlier_time(Progress p) const {
     return p;
 }
 
+JobRecord Job::record_locked(JobState state, const std::string& error, const Progress& progress) const {
+    return {created_, state, error, progress, priority_, snapshot_.stop};
+}
+
+JobRecord Job::record(JobState state, const std::string& error, const Progress& progress) const {
+    std::lock_guard lock(mutex_);
+    return record_locked(state, error, progress);
+}
+
 void Job::save_state(JobState state, const std::string& error, const Progress& progress) const {
-    if (!store_) return;
+    if (store_) write_state(record(state, error, progress));
+}
+
+void Job::write_state(const JobRecord& record) const {
     try {
-        store_->save_state(id_, created_, state, error, progress);
+        store_->save_state(id_, record);
     } catch (const std::exception& e) {
         spdlog::error("job {}: cannot save its state: {}", id_, e.what());
     }
@@ -50,7 +64,7 @@ void Job::checkpoint(const Progress& progress) {
     const auto start = Clock::now();
     try {
         store_->save_film(id_, FilmFile::checkpoint, partial_of(render_, fingerprint_, progress.spp_done));
-        store_->save_state(id_, created_, JobState::running, "", progress);
+        store_->save_state(id_, record(JobState::running, "", progress));
         spdlog::info("job {} checkpoint at {} spp in {:.1f} ms", id_, progress.spp_done,
                      std::chrono::duration<double, std::milli>(Clock::now() - start).count());
     } catch (const std::exception& e) {
@@ -68,7 +82,7 @@ void Job::save_final(JobState state, const Progress& progress) const {
     try {
         if (const uint32_t most = most_samples(render_.film()); most > 0)
             store_->save_film(id_, FilmFile::final, partial_of(render_, fingerprint_, most));
-        store_->save_state(id_, created_, state, "", progress);
+        store_->save_state(id_, record(state, "", progress));
         std::filesystem::remove(store_->film_path(id_, FilmFile::checkpoint));
     } catch (const std::exception& e) {
         spdlog::error("job {}: cannot save its end: {}", id_, e.what());
@@ -86,8 +100,40 @@ void Job::publish(JobState state, const Progress& progress) {
         snapshot_.progress = progress;
         snapshot_.png = std::move(png);
         snapshot_.image = std::move(image);
+        snapshot_.preview = false;
     }
     changed_.notify_all();
+}
+
+void Job::publish_preview(const Image& preview) {
+    auto image = std::make_shared<const Image>(preview);
+    auto png = std::make_shared<const std::vector<uint8_t>>(encode_png(*image, render_.settings().encoding));
+    {
+        std::lock_guard lock(mutex_);
+        snapshot_.frame += 1;
+        snapshot_.png = std::move(png);
+        snapshot_.image = std::move(image);
+        snapshot_.preview = true;
+    }
+    changed_.notify_all();
+}
+
+void Job::set_stop(StopReason reason) {
+    std::lock_guard lock(mutex_);
+    snapshot_.stop = reason;
+}
+
+bool Job::set_priority(int priority) {
+    {
+        std::lock_guard lock(mutex_);
+        if (is_final(snapshot_.state)) return false;
+        priority_ = priority;
+    }
+    render_.set_weight(priority_weight(priority));
+    const JobSnapshot s = snapshot();
+    save_state(s.state, "", s.progress);
+    spdlog::info("job {} priority {}", id_, priority);
+    return true;
 }
 
 void Job::run(ThreadPool& pool) {
@@ -122,7 +168,7 @@ void Job::render_here(ThreadPool& pool) {
             spdlog::info("job {} running: {}/{} spp, error {:.4g}", id_, p.spp_done, p.spp_target, p.error_estimate);
             if (store_) checkpoint(p);
             if (suspended_) render_.cancel();
-        });
+        }, [&](const Image& preview) { publish_preview(preview); });
         if (suspended_ && reason == StopReason::cancelled) {
             publish(JobState::cancelled, with_earlier_time(render_.progress()));
             spdlog::info("job {} suspended at {} spp: it resumes when the server restarts on the store", id_,
@@ -132,6 +178,7 @@ void Job::render_here(ThreadPool& pool) {
         // The final frame also holds the samples of a pass cut short: nothing rendered is lost.
         const JobState end = reason == StopReason::cancelled ? JobState::cancelled : JobState::done;
         const Progress p = with_earlier_time(render_.progress());
+        set_stop(reason);
         save_final(end, p);
         publish(end, p);
     } catch (const std::exception& e) {
@@ -159,7 +206,7 @@ bool Job::merge_parts(std::vector<PartFilm>& parts) {
     // Every part done: the ranges tile the job, and merge_partials adds them in the order glint
     // merge does, to the whole render's bytes. Before, a preview: the parts' sums so far, added
     // to an empty film (adding to zero is exact) without copying the parts.
-    Film merged(settings().width, settings().height);
+    Film merged(render_.film().width(), render_.film().height());
     if (all_done) {
         std::vector<Partial> films;
         for (PartFilm& part : parts) films.push_back(std::move(*part.film));
@@ -177,7 +224,8 @@ void Job::render_on_farm() {
     const auto progress = [&] {
         Progress p = render_.progress();
         p.seconds = seconds_before_ + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        p.samples_per_second = p.seconds > 0 ? double(p.spp_done) * settings().width * settings().height / p.seconds : 0;
+        p.samples_per_second =
+            p.seconds > 0 ? double(p.spp_done) * render_.film().width() * render_.film().height() / p.seconds : 0;
         return p;
     };
     const SlurmFarm& farm = *farm_.farm;
@@ -192,6 +240,7 @@ void Job::render_on_farm() {
             if (suspended_) return publish(JobState::cancelled, progress());  // the parts go on; a restart follows them
             if (cancelled_) {
                 farm.cancel(*farm_.run);
+                set_stop(StopReason::cancelled);
                 save_final(JobState::cancelled, progress());
                 return publish(JobState::cancelled, progress());
             }
@@ -217,6 +266,7 @@ void Job::render_on_farm() {
             changed_.wait_for(lock, std::chrono::duration<double>(farm.config().poll_interval),
                               [&] { return cancelled_ || suspended_; });
         }
+        set_stop(StopReason::completed);
         save_final(JobState::done, progress());
         publish(JobState::done, progress());
         spdlog::info("job {} done on the farm: {} spp", id_, render_.progress().spp_done);
@@ -232,7 +282,8 @@ void Job::cancel() {
         std::lock_guard lock(mutex_);
         if (is_final(snapshot_.state) || suspended_) return;
         if (snapshot_.state == JobState::queued) {
-            save_state(JobState::cancelled, "", snapshot_.progress);  // on disk first, as in run()
+            snapshot_.stop = StopReason::cancelled;
+            if (store_) write_state(record_locked(JobState::cancelled, "", snapshot_.progress));  // on disk first, as in run()
             snapshot_.state = JobState::cancelled;
             snapshot_.frame += 1;
             // A farm job a restarted server took back: its parts run on though it waits here.
@@ -266,21 +317,22 @@ void Job::resume(const Partial& checkpoint, const Progress& saved) {
     snapshot_.progress = p;
 }
 
-void Job::restore_final(JobState state, const std::string& error, const Progress& progress, const Partial* film) {
+void Job::restore_final(const JobRecord& record, const Partial* film) {
     std::shared_ptr<const Image> image;
     std::shared_ptr<const std::vector<uint8_t>> png;
     if (film) {
-        if (film->fingerprint != fingerprint_ || film->film.width() != settings().width ||
-            film->film.height() != settings().height)
+        if (film->fingerprint != fingerprint_ || film->film.width() != render_.film().width() ||
+            film->film.height() != render_.film().height())
             throw std::invalid_argument("it is from another scene or settings (fingerprint or size differs)");
         image = std::make_shared<const Image>(film->film.mean());
         png = std::make_shared<const std::vector<uint8_t>>(encode_png(*image, settings().encoding));
     }
     std::lock_guard lock(mutex_);
     snapshot_.frame = 1;
-    snapshot_.state = state;
-    snapshot_.error = error;
-    snapshot_.progress = progress;
+    snapshot_.state = record.state;
+    snapshot_.error = record.error;
+    snapshot_.progress = record.progress;
+    snapshot_.stop = record.stop;
     snapshot_.image = std::move(image);
     snapshot_.png = std::move(png);
 }

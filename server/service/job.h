@@ -27,6 +27,8 @@ struct JobSnapshot {
     std::shared_ptr<const Image> image;               // the linear mean image of that frame
     std::string error;                                // why a failed job failed
     std::optional<PartCounts> parts;                  // a farm job's parts, once submitted
+    std::optional<StopReason> stop;                   // why it ended (not set for a failed job)
+    bool preview = false;                             // the frame is the throwaway first preview
 };
 
 // A job rendered on a farm rather than on the server's threads: the farm, the request its parts
@@ -42,13 +44,19 @@ public:
     // With a store, the job saves its state when it changes and its film after passes (at most
     // every checkpoint interval) and at the end; see job_store.h.
     Job(std::string id, const LoadedScene& scene, const JobStore* store = nullptr,
-        std::chrono::system_clock::time_point created = std::chrono::system_clock::now(), FarmJob farm = {});
+        std::chrono::system_clock::time_point created = std::chrono::system_clock::now(), FarmJob farm = {},
+        int priority = 0);
 
     const std::string& id() const { return id_; }
     const RenderSettings& settings() const { return render_.settings(); }
     std::chrono::system_clock::time_point created() const { return created_; }
     // The scene's warnings (what it asks for that glint does not model), fixed at submission.
     const std::vector<std::string>& warnings() const { return warnings_; }
+    int priority() const { return priority_; }
+    // Changes a queued or running job's priority (service/priority.h), and with it the share of
+    // the render threads it gets from its next tile on; false (and nothing changed) once the
+    // job has ended. The job manager reads priorities when it picks the next job to start.
+    bool set_priority(int priority);
 
     // Renders to the end on `pool`, or on the farm (called by the job manager's slot thread).
     void run(ThreadPool& pool);
@@ -64,7 +72,7 @@ public:
     void resume(const Partial& checkpoint, const Progress& saved);
     // A job that had ended: its state and, if it rendered anything, the film it ended with.
     // Throws std::invalid_argument if the film is not this job's.
-    void restore_final(JobState state, const std::string& error, const Progress& progress, const Partial* film);
+    void restore_final(const JobRecord& record, const Partial* film);
     // Ends the job as failed with `error` (shown with its status), without an image.
     void fail(const std::string& error);
 
@@ -83,9 +91,16 @@ private:
     bool merge_parts(std::vector<PartFilm>& parts);
     void end_failed(const std::string& error, const Progress& progress);
     void publish(JobState state, const Progress& progress);
+    // Publishes `image` as a frame without touching the film (the first preview).
+    void publish_preview(const Image& image);
+    void set_stop(StopReason reason);
+    // The job's state.json as it would be in `state`; record_locked() with mutex_ held.
+    JobRecord record(JobState state, const std::string& error, const Progress& progress) const;
+    JobRecord record_locked(JobState state, const std::string& error, const Progress& progress) const;
     Progress with_earlier_time(Progress p) const;
     // Store writes: a failure is logged, never stops the render or a request.
     void save_state(JobState state, const std::string& error, const Progress& progress) const;
+    void write_state(const JobRecord& record) const;
     void checkpoint(const Progress& progress);
     void save_final(JobState state, const Progress& progress) const;
 
@@ -99,6 +114,7 @@ private:
     std::chrono::steady_clock::time_point last_checkpoint_ = std::chrono::steady_clock::now();
     std::atomic<bool> suspended_{false};
     std::atomic<bool> cancelled_{false};
+    std::atomic<int> priority_;
     FarmJob farm_;
     mutable std::mutex mutex_;
     mutable std::condition_variable changed_;

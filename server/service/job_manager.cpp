@@ -33,13 +33,17 @@ JobManager::~JobManager() {
     for (std::thread& t : slots_) t.join();
 }
 
-std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene, const std::string& request) {
+std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene, const std::string& request, int priority) {
     const uint64_t film_bytes = store_ ? partial_file_size(scene.settings.width, scene.settings.height) : 0;
     if (store_ && film_bytes > store_->config().limit_bytes)
         throw InvalidRequest("the job's checkpoint (" + std::to_string(film_bytes) +
                              " bytes) would not fit in the store (limit " +
                              std::to_string(store_->config().limit_bytes) + " bytes)");
-    auto job = std::make_shared<Job>(new_job_id(), scene, store_.get(), std::chrono::system_clock::now(), farm_job(request));
+    if (farm_ && (scene.settings.time_limit > 0 || scene.settings.target_error > 0))
+        throw InvalidRequest("a job on the farm renders every sample it asks for: it takes no time limit or target error",
+                             scene.settings.time_limit > 0 ? "film.time_limit" : "film.target_error");
+    auto job = std::make_shared<Job>(new_job_id(), scene, store_.get(), std::chrono::system_clock::now(), farm_job(request),
+                                     priority);
     {
         std::lock_guard lock(mutex_);
         if (stopping_) throw Busy("the server is shutting down");
@@ -48,7 +52,7 @@ std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene, const std::str
         if (store_) {
             try {
                 store_->save_request(job->id(), request);
-                store_->save_state(job->id(), job->created(), JobState::queued, "", job->snapshot().progress);
+                store_->save_state(job->id(), {job->created(), JobState::queued, "", job->snapshot().progress, priority, {}});
             } catch (const std::exception&) {
                 store_->remove(job->id());  // a job the store cannot keep is not accepted
                 throw;
@@ -60,8 +64,8 @@ std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene, const std::str
         forget_old_finished(film_bytes);
     }
     work_.notify_one();
-    spdlog::info("job {} queued: {}x{}, {} spp", job->id(), job->settings().width, job->settings().height,
-                 job->settings().spp);
+    spdlog::info("job {} queued: {}x{}, {} spp, priority {}", job->id(), job->settings().width, job->settings().height,
+                 job->settings().spp, priority);
     return job;
 }
 
@@ -123,19 +127,21 @@ void JobManager::restore(const std::function<LoadedScene(const std::string&)>& p
 
 std::shared_ptr<Job> JobManager::restore_job(const StoredJob& stored, const LoadedScene& loaded) const {
     LoadedScene scene = loaded;
+    const JobRecord& record = stored.record;
     if (scene.settings.time_limit > 0)  // the time rendered before the restart counts
-        scene.settings.time_limit = std::max(1e-3, scene.settings.time_limit - stored.progress.seconds);
-    auto job = std::make_shared<Job>(stored.id, scene, store_.get(), stored.created, farm_job(stored.request, stored.farm));
-    const bool final = is_final(stored.state);
+        scene.settings.time_limit = std::max(1e-3, scene.settings.time_limit - record.progress.seconds);
+    auto job = std::make_shared<Job>(stored.id, scene, store_.get(), record.created,
+                                     farm_job(stored.request, stored.farm), record.priority);
+    const bool final = is_final(record.state);
     const FilmFile which = final ? FilmFile::final : FilmFile::checkpoint;
     try {
         if (final) {
             std::optional<Partial> film;
-            if (stored.state != JobState::failed && store_->has_film(stored.id, which))
+            if (record.state != JobState::failed && store_->has_film(stored.id, which))
                 film = store_->load_film(stored.id, which);
-            job->restore_final(stored.state, stored.error, stored.progress, film ? &*film : nullptr);
+            job->restore_final(record, film ? &*film : nullptr);
         } else if (store_->has_film(stored.id, which)) {
-            job->resume(store_->load_film(stored.id, which), stored.progress);
+            job->resume(store_->load_film(stored.id, which), record.progress);
             spdlog::info("store: job {} resumes from its checkpoint at {} spp", stored.id, job->snapshot().progress.spp_done);
         }
     } catch (const std::exception& e) {
@@ -158,8 +164,7 @@ void JobManager::slot() {
             std::unique_lock lock(mutex_);
             work_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
             if (stopping_) return;
-            job = queue_.front();
-            queue_.pop_front();
+            job = take_next();
             ++running_;
         }
         job->run(pool_);
@@ -169,6 +174,17 @@ void JobManager::slot() {
         // ended in memory, but the store keeps them to resume.
         if (store_ && !stopping_) forget_old_finished();
     }
+}
+
+// The queued job of highest priority, the earliest submitted among equals. Priorities may change
+// while jobs wait (PATCH), so they are read here rather than kept in the queue's order.
+std::shared_ptr<Job> JobManager::take_next() {
+    auto next = queue_.begin();
+    for (auto it = queue_.begin(); it != queue_.end(); ++it)
+        if ((*it)->priority() > (*next)->priority()) next = it;
+    std::shared_ptr<Job> job = *next;
+    queue_.erase(next);
+    return job;
 }
 
 std::shared_ptr<Job> JobManager::find(const std::string& id) const {

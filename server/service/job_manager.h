@@ -1,5 +1,6 @@
 // Accepts jobs into a bounded queue and runs up to `max_running` at once on the shared render
-// pool (whose round-robin keeps a small job from starving behind a large one). Finished jobs are
+// pool, highest priority first; running jobs share the pool's turns by their priorities'
+// weights, so a small job is not starved behind a large one (service/priority.h). Finished jobs are
 // kept for their images, the oldest forgotten first beyond `max_finished` or, with a store,
 // beyond the store's size limit (running and queued jobs are never evicted).
 #pragma once
@@ -28,7 +29,8 @@ public:
     // Throws Busy (service/errors.h) when max_queued jobs are already waiting or the manager is
     // shutting down, InvalidRequest when the job's film would not fit in the store. `request` is
     // what the store keeps to rebuild the job after a restart (parsed again by restore's `parse`).
-    std::shared_ptr<Job> submit(const LoadedScene& scene, const std::string& request = "");
+    // Queued jobs start in order of priority (service/priority.h), then of submission.
+    std::shared_ptr<Job> submit(const LoadedScene& scene, const std::string& request = "", int priority = 0);
     // Takes back the store's jobs (same ids, oldest first): unfinished ones are queued to resume
     // from their checkpoints, finished ones serve their images again. A job whose checkpoint is
     // corrupt or does not fit its scene is marked failed with the reason.
@@ -43,6 +45,7 @@ public:
 
 private:
     void slot();  // one running job at a time, until shutdown
+    std::shared_ptr<Job> take_next();  // under mutex_, from a queue that is not empty
     // Under mutex_: forgets the oldest finished jobs beyond max_finished or while the store,
     // plus `reserve` bytes about to be written, is over its limit.
     void forget_old_finished(uint64_t reserve = 0);

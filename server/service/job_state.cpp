@@ -23,4 +23,20 @@ JobState job_state_named(const std::string& name) {
     throw std::invalid_argument("unknown state \"" + name + "\"");
 }
 
+const char* stop_reason_name(StopReason reason) {
+    switch (reason) {
+        case StopReason::completed: return "spp";
+        case StopReason::time_limit: return "time_limit";
+        case StopReason::target_error: return "target_error";
+        case StopReason::cancelled: return "cancelled";
+    }
+    return "?";
+}
+
+StopReason stop_reason_named(const std::string& name) {
+    for (StopReason r : {StopReason::completed, StopReason::time_limit, StopReason::target_error, StopReason::cancelled})
+        if (name == stop_reason_name(r)) return r;
+    throw std::invalid_argument("unknown stop reason \"" + name + "\"");
+}
+
 }  // namespace glint

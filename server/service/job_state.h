@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "render/renderer.h"
+
 namespace glint {
 
 enum class JobState { queued, running, done, cancelled, failed };
@@ -13,5 +15,11 @@ inline bool is_final(JobState s) {
 }
 // The state `name` names (to_string's inverse); throws std::invalid_argument for any other.
 JobState job_state_named(const std::string& name);
+
+// Why a job ended, as the API and the store name it: "spp" (it has every sample asked for),
+// "time_limit", "target_error" or "cancelled".
+const char* stop_reason_name(StopReason reason);
+// stop_reason_name's inverse; throws std::invalid_argument for any other name.
+StopReason stop_reason_named(const std::string& name);
 
 }  // namespace glint

@@ -48,6 +48,17 @@ uint64_t folder_bytes(const fs::path& folder) {
     return total;
 }
 
+JobRecord record_from_json(const json& state) {
+    JobRecord r;
+    r.created = std::chrono::system_clock::time_point(std::chrono::system_clock::duration(state.at("created").get<int64_t>()));
+    r.state = job_state_named(state.at("state").get<std::string>());
+    r.error = state.at("error").get<std::string>();
+    r.progress = progress_from_json(state.at("progress"));
+    r.priority = state.value("priority", 0);
+    if (state.contains("stop_reason")) r.stop = stop_reason_named(state.at("stop_reason").get<std::string>());
+    return r;
+}
+
 }  // namespace
 
 JobStore::JobStore(StoreConfig config) : config_(std::move(config)) {
@@ -68,11 +79,7 @@ std::vector<StoredJob> JobStore::load() const {
             StoredJob job;
             job.id = id;
             job.request = read_text(entry.path() / "request.json", kMaxRequestBytes);
-            job.created = std::chrono::system_clock::time_point(
-                std::chrono::system_clock::duration(state.at("created").get<int64_t>()));
-            job.state = job_state_named(state.at("state").get<std::string>());
-            job.error = state.at("error").get<std::string>();
-            job.progress = progress_from_json(state.at("progress"));
+            job.record = record_from_json(state);
             if (fs::exists(entry.path() / "farm.json")) job.farm = read_text(entry.path() / "farm.json", kMaxStateBytes);
             jobs.push_back(std::move(job));
         } catch (const std::exception& e) {
@@ -81,7 +88,7 @@ std::vector<StoredJob> JobStore::load() const {
         }
     }
     std::sort(jobs.begin(), jobs.end(), [](const StoredJob& a, const StoredJob& b) {
-        return a.created != b.created ? a.created < b.created : a.id < b.id;
+        return a.record.created != b.record.created ? a.record.created < b.record.created : a.id < b.id;
     });
     return jobs;
 }
@@ -91,12 +98,13 @@ void JobStore::save_request(const std::string& id, const std::string& request) c
     write_file((folder(id) / "request.json").string(), bytes_of(request));
 }
 
-void JobStore::save_state(const std::string& id, std::chrono::system_clock::time_point created, JobState state,
-                          const std::string& error, const Progress& progress) const {
-    const json j = {{"created", int64_t(created.time_since_epoch().count())},
-                    {"state", to_string(state)},
-                    {"error", error},
-                    {"progress", progress_json(progress)}};
+void JobStore::save_state(const std::string& id, const JobRecord& r) const {
+    json j = {{"created", int64_t(r.created.time_since_epoch().count())},
+              {"state", to_string(r.state)},
+              {"error", r.error},
+              {"progress", progress_json(r.progress)},
+              {"priority", r.priority}};
+    if (r.stop) j["stop_reason"] = stop_reason_name(*r.stop);
     write_file((folder(id) / "state.json").string(), bytes_of(j.dump()));
 }
 

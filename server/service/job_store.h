@@ -4,8 +4,9 @@
 //
 // One folder per job, DIR/{id}/:
 //   request.json        the request body as received (a scene, or a preset with overrides)
-//   state.json          {"created", "state", "error", "progress"}: what GET /jobs/{id} shows
-//                       (progress as service/progress_json.h writes it)
+//   state.json          {"created", "state", "error", "progress", "priority", "stop_reason"}:
+//                       what GET /jobs/{id} shows (progress as service/progress_json.h writes
+//                       it; the last two absent in a store from before they were kept)
 //   checkpoint.glntpart the film after a whole pass (samples [first, end) of every pixel), in
 //                       the partial-file format of core/io/partial_file.h (fingerprint, checksum)
 //   final.glntpart      the film as the job ended (a cancelled job's last pass may be partial)
@@ -27,14 +28,21 @@
 
 namespace glint {
 
-// What the store holds about one job.
-struct StoredJob {
-    std::string id;
-    std::string request;
+// A job's state.json.
+struct JobRecord {
     std::chrono::system_clock::time_point created;
     JobState state = JobState::queued;
     std::string error;
     Progress progress;
+    int priority = 0;                 // as changed since the request, which gave the first
+    std::optional<StopReason> stop;  // why it ended, once it has
+};
+
+// What the store holds about one job.
+struct StoredJob {
+    std::string id;
+    std::string request;
+    JobRecord record;
     std::string farm;  // farm.json's text, for a job submitted to a farm; else empty
 };
 
@@ -50,8 +58,7 @@ public:
     // logged and left out (and left on disk for a person to look at).
     std::vector<StoredJob> load() const;
     void save_request(const std::string& id, const std::string& request) const;
-    void save_state(const std::string& id, std::chrono::system_clock::time_point created, JobState state,
-                    const std::string& error, const Progress& progress) const;
+    void save_state(const std::string& id, const JobRecord& record) const;
     void save_film(const std::string& id, FilmFile which, const Partial& film) const;
     void save_farm(const std::string& id, const std::string& farm) const;
     // Throws PartialError (corrupt, truncated) or FileError.

@@ -69,7 +69,7 @@ void partial(const uint8_t* data, size_t size) {
 
 void job_request(const uint8_t* data, size_t size) {
     try {
-        const LoadedScene loaded = parse_job_request(text(data, size), scenes_folder(), ServiceConfig{}.scene);
+        const LoadedScene loaded = parse_job_request(text(data, size), scenes_folder(), ServiceConfig{}.scene).scene;
         require(loaded.scene != nullptr);
     } catch (const ServiceError&) {
     }

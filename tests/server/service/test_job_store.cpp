@@ -158,7 +158,7 @@ protected:
 
 // The images an uninterrupted render of the request gives, through the library.
 std::pair<std::string, std::string> uninterrupted(const std::string& request) {
-    const LoadedScene scene = parse_job_request(request, GLINT_SCENES_DIR, ServiceConfig{}.scene);
+    const LoadedScene scene = parse_job_request(request, GLINT_SCENES_DIR, ServiceConfig{}.scene).scene;
     const auto job = testing::render(scene, 2);
     const Image image = job->film().mean();
     const auto png = encode_png(image, scene.settings.encoding), pfm = encode_pfm(image);
@@ -169,7 +169,7 @@ std::pair<std::string, std::string> uninterrupted(const std::string& request) {
 // samples in the order an uninterrupted run does.
 TEST(StoreResume, ARenderResumedBetweenPassesHasBitIdenticalSums) {
     LoadedScene scene = parse_job_request(R"({"preset": "cornell", "width": 12, "height": 8, "spp": 24})",
-                                          GLINT_SCENES_DIR, ServiceConfig{}.scene);
+                                          GLINT_SCENES_DIR, ServiceConfig{}.scene).scene;
     ThreadPool pool(2);
     RenderJob whole(scene.scene, scene.settings);
     whole.run(pool);
