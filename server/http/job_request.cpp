@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "base/files.h"
+#include "io/json_text.h"
 
 namespace glint {
 namespace {
@@ -80,26 +81,21 @@ std::filesystem::path preset_path(const std::filesystem::path& scenes, const std
     return std::filesystem::is_regular_file(file) ? file : std::filesystem::path{};
 }
 
+nlohmann::json parse_request_json(const std::string& body) {
+    try {
+        return parse_json_text(body);
+    } catch (const JsonTextError& e) {
+        throw MalformedRequest(e.what());
+    }
+}
+
 LoadedScene parse_job_request(const std::string& body, const std::filesystem::path& scenes,
                               const SceneLimits& limits) {
-    nlohmann::json request;
-    try {
-        // Bounded like the scene parser: 16 MiB of '[' would otherwise build 16 M nested arrays.
-        request = nlohmann::json::parse(
-            body, [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-                if (depth > kMaxJsonDepth)
-                    throw MalformedRequest("JSON nested deeper than " +
-                                           std::to_string(kMaxJsonDepth) + " levels");
-                return true;
-            });
-    } catch (const nlohmann::json::exception&) {  // syntax, or a number out of range (1e999)
-        // Throws with the scene parser's message for it.
-        load_checked([&] { return parse_scene(body, scenes, limits); });
-    }
-    // Both paths end with check_settings(): parse_scene's own, or apply_film_overrides'.
+    const nlohmann::json request = parse_request_json(body);
+    // Both paths end with check_settings(): scene_from_json's own, or apply_film_overrides'.
     return request.is_object() && request.contains("preset")
                ? parse_preset_request(request, scenes, limits)
-               : load_checked([&] { return parse_scene(body, scenes, limits); });
+               : load_checked([&] { return scene_from_json(request, scenes, limits); });
 }
 
 nlohmann::json list_presets(const std::filesystem::path& scenes) {
@@ -111,8 +107,8 @@ nlohmann::json list_presets(const std::filesystem::path& scenes) {
     nlohmann::json presets = nlohmann::json::array();
     for (const auto& file : files) {
         try {
-            const nlohmann::json scene =
-                nlohmann::json::parse(read_file(file.string(), size_t(16) << 20));
+            const std::vector<uint8_t> bytes = read_file(file.string(), size_t(16) << 20);
+            const nlohmann::json scene = parse_json_text(std::string(bytes.begin(), bytes.end()));
             const nlohmann::json film = scene.value("film", nlohmann::json::object());
             presets.push_back({{"name", file.stem().string()},
                                {"description", scene.value("description", "")},

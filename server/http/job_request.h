@@ -13,6 +13,10 @@
 
 namespace glint {
 
+// A request body as JSON (io/json_text.h); MalformedRequest, naming the byte at fault, if it
+// is not.
+nlohmann::json parse_request_json(const std::string& body);
+
 // Throws MalformedRequest, InvalidRequest or NotFound (an unknown preset).
 LoadedScene parse_job_request(const std::string& body, const std::filesystem::path& scenes,
                               const SceneLimits& limits);

@@ -69,11 +69,11 @@ TEST(FuzzRegressions, EachCrashingInputEndsInItsCleanError) {
     auto text = [](const std::vector<uint8_t>& b) { return std::string(b.begin(), b.end()); };
     EXPECT_EQ(error_from<SceneError>("scene/number-overflow.json",
                                      [&](const auto& b) { parse_scene(text(b), fuzz::mesh_folder()); }),
-              "malformed JSON: number overflow parsing '1e2612'");
+              "malformed JSON at byte 25: number overflow parsing '1e2612'");
     EXPECT_EQ(error_from<ServiceError>("job_request/number-overflow.json", [&](const auto& b) {
                   parse_job_request(text(b), fuzz::scenes_folder(), ServiceConfig{}.scene);
               }),
-              "malformed JSON: number overflow parsing '1e999'");
+              "malformed JSON at byte 34: number overflow parsing '1e999'");
     EXPECT_EQ(error_from<PartialError>("partial/unknown-encoding.bin",
                                        [](const auto& b) { decode_partial(with_checksum(b)); }),
               "unknown PNG encoding 168 (0 gamma 2.2, 1 sRGB)");
