@@ -1,13 +1,29 @@
 #include "base/thread_pool.h"
 
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
 namespace glint {
 
 ThreadPool::ThreadPool(unsigned threads) {
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-    for (unsigned i = 0; i < threads; ++i) workers_.emplace_back([this] { work(); });
+    try {
+        for (unsigned i = 0; i < threads; ++i) workers_.emplace_back([this] { work(); });
+    } catch (const std::system_error& e) {
+        // The destructor does not run for a constructor that throws, and a joinable thread
+        // destroyed unjoined calls std::terminate: stop the workers already started here.
+        const size_t started = workers_.size();
+        stop_workers();
+        throw std::runtime_error("cannot start render thread " + std::to_string(started + 1) + " of " +
+                                 std::to_string(threads) + ": " + e.what());
+    }
 }
 
-ThreadPool::~ThreadPool() {
+ThreadPool::~ThreadPool() { stop_workers(); }
+
+void ThreadPool::stop_workers() {
     {
         std::lock_guard lock(mutex_);
         stopping_ = true;

@@ -21,7 +21,14 @@ namespace glint {
 
 class ThreadPool {
 public:
-    explicit ThreadPool(unsigned threads);  // 0 means one per hardware thread
+    // The most threads a command line may ask for (`--threads`): far beyond any machine's cores,
+    // low enough that a typo such as 100000 is refused with its range instead of exhausting the
+    // process's threads.
+    static constexpr unsigned kMaxThreads = 1024;
+
+    // 0 means one per hardware thread. Throws std::runtime_error, with every thread it started
+    // joined, when the system refuses a thread (a process or memory limit).
+    explicit ThreadPool(unsigned threads);
     ~ThreadPool();
     ThreadPool(const ThreadPool&) = delete;
     ThreadPool& operator=(const ThreadPool&) = delete;
@@ -51,6 +58,7 @@ private:
     // the waiting ones when this was its last index.
     std::shared_ptr<Batch> take_turn();
     static double weight_of(const Batch& batch);
+    void stop_workers();
 
     mutable std::mutex mutex_;
     std::condition_variable work_ready_, batch_done_;

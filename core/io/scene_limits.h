@@ -28,9 +28,6 @@ private:
     bool malformed_;
 };
 
-// JSON nested deeper is refused while parsing, before it can cost stack or memory.
-inline constexpr int kMaxJsonDepth = 32;
-
 // Bounds on what one scene may ask for, so no input exhausts memory or runs forever.
 struct SceneLimits {
     int max_dimension = 16384;

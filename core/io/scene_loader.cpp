@@ -5,6 +5,7 @@
 #include <initializer_list>
 
 #include "base/files.h"
+#include "io/json_text.h"
 #include "io/obj_loader.h"
 
 namespace glint {
@@ -402,16 +403,14 @@ private:
 LoadedScene parse_scene(const std::string& json_text, const std::filesystem::path& folder, const SceneLimits& limits) {
     json root;
     try {
-        // Refuse deep nesting while parsing, before it can cost stack or memory.
-        root = json::parse(json_text, [](int depth, json::parse_event_t, json&) {
-            if (depth > kMaxJsonDepth)
-                throw SceneError("", "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels", true);
-            return true;
-        });
-    } catch (const json::exception& e) {  // parse_error, and out_of_range for numbers like 1e999
-        std::string what = e.what();
-        throw SceneError("", "malformed JSON: " + what.substr(what.find(' ') + 1), true);
+        root = parse_json_text(json_text);
+    } catch (const JsonTextError& e) {
+        throw SceneError("", e.what(), true);
     }
+    return scene_from_json(root, folder, limits);
+}
+
+LoadedScene scene_from_json(const nlohmann::json& root, const std::filesystem::path& folder, const SceneLimits& limits) {
     return SceneParser(folder, limits).parse(At{root, ""});
 }
 

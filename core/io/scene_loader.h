@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "io/film_overrides.h"
 #include "io/scene_limits.h"
 #include "render/settings.h"
@@ -23,9 +25,13 @@ struct LoadedScene {
 };
 
 // `folder` is where mesh files are looked up; file references outside it are refused, and
-// with an empty folder every file reference is refused.
+// with an empty folder every file reference is refused. Text that is not JSON (io/json_text.h)
+// is a SceneError with malformed() set.
 LoadedScene parse_scene(const std::string& json_text, const std::filesystem::path& folder,
                         const SceneLimits& limits = {});
+// The same, from JSON parsed already (a request body, parsed to see whether it names a preset).
+LoadedScene scene_from_json(const nlohmann::json& root, const std::filesystem::path& folder,
+                            const SceneLimits& limits = {});
 // Mesh files are looked up in `folder`, or the scene file's own folder when it is empty.
 LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& limits = {},
                        const std::filesystem::path& folder = {});

@@ -12,6 +12,7 @@
 
 #include "base/files.h"
 #include "cli/commands.h"
+#include "cli/option_range.h"
 #include "cli/progress_bar.h"
 #include "io/film_overrides.h"
 #include "io/fingerprint.h"
@@ -230,13 +231,14 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--scenes", o->meshes, "Folder the scene's mesh files are read from (default: the scene file's)");
     cmd->add_option("--checkpoint", o->checkpoint,
                     "Keep the film in this file as the render goes, and continue from it if it is there");
-    cmd->add_option("--checkpoint-interval", o->checkpoint_interval, "Seconds between checkpoints (default 5)")
-        ->check(CLI::Range(0.0, 3600.0));
-    cmd->add_option("--spp", o->spp, "Samples per pixel (film.spp)");
-    cmd->add_option("--width", o->width, "Image width (film.width)");
-    cmd->add_option("--height", o->height, "Image height (film.height)");
-    cmd->add_option("--threads", o->threads, "Render threads (default: all cores)");
-    cmd->add_option("--seed", o->seed, "Random seed (film.seed)");
+    in_range(cmd->add_option("--checkpoint-interval", o->checkpoint_interval,
+                             "Seconds between checkpoints (default 5; 0: after every pass)"),
+             checkpoint_seconds());
+    in_range(cmd->add_option("--spp", o->spp, "Samples per pixel (film.spp)"), film_option(FilmInteger::spp));
+    in_range(cmd->add_option("--width", o->width, "Image width (film.width)"), film_option(FilmInteger::width));
+    in_range(cmd->add_option("--height", o->height, "Image height (film.height)"), film_option(FilmInteger::height));
+    in_range(cmd->add_option("--threads", o->threads, "Render threads (default 0: all cores)"), thread_count());
+    in_range(cmd->add_option("--seed", o->seed, "Random seed (film.seed)"), film_option(FilmInteger::seed));
     cmd->add_option("--encoding", o->encoding, "PNG encoding (film.encoding)")->check(CLI::IsMember({"gamma2.2", "srgb"}));
     // Checked by check_settings(), with the scene file's and a job request's values.
     cmd->add_option("--target-error", o->target_error,
@@ -246,7 +248,7 @@ std::function<int()> add_render_command(CLI::App& app) {
                     "Render only the window X0,Y0,X1,Y1 (pixels, rows from the top, X1 and Y1 excluded; film.region)")
         ->delimiter(',')
         ->expected(4);
-    return [o] { return run_render(*o); };
+    return [o] { return run_reporting_errors([&] { return run_render(*o); }); };
 }
 
 }  // namespace glint

@@ -7,6 +7,7 @@
 #include "base/files.h"
 #include "base/thread_pool.h"
 #include "cli/commands.h"
+#include "cli/option_range.h"
 #include "io/obj_loader.h"
 #include "io/ray_file.h"
 #include "scene/geometry.h"
@@ -25,9 +26,9 @@ void declare_options(CLI::App& cmd, TraceOptions& o) {
     cmd.add_option("mesh", o.mesh, "OBJ mesh")->required();
     cmd.add_option("rays", o.rays, "Ray file (RAYS0001)")->required();
     cmd.add_option("-o,--output", o.output, "Hit file to write (HITS0001)");
-    cmd.add_option("--threads", o.threads, "Threads (0: all cores)");
-    cmd.add_option("--repeat", o.repeat, "Trace the set this many times and report the median")
-        ->check(CLI::PositiveNumber);
+    in_range(cmd.add_option("--threads", o.threads, "Threads (default 1; 0: all cores)"), thread_count());
+    in_range(cmd.add_option("--repeat", o.repeat, "Trace the set this many times and report the median (default 3)"),
+             integers(1, 1000));
     cmd.add_flag("--any-hit", o.any_hit, "Occlusion queries instead of closest hits (t = 0 marks a hit)");
 }
 

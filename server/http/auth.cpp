@@ -31,6 +31,7 @@ bool token_in_query_allowed(const httplib::Request& req) {
 }
 
 std::string check_token(const httplib::Request& req, const std::string& token) {
+    if (token.empty() || !needs_token(req.path)) return "";
     const std::string header = req.get_header_value("Authorization");
     constexpr std::string_view scheme = "Bearer ";
     if (header.size() > scheme.size() && header.starts_with(scheme))

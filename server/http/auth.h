@@ -22,7 +22,9 @@ bool needs_token(const std::string& path);
 // as the query parameter `token` there.
 bool token_in_query_allowed(const httplib::Request& req);
 
-// Empty when the request may proceed, else why not (answered with 401).
+// Empty when the request may proceed (no token set, a route that needs none, or the right
+// token), else why not (answered with 401). Reads the query parameters cpp-httplib parsed from
+// the request target (fuzzed through the server's own parsing: tests/fuzz, harness `query`).
 std::string check_token(const httplib::Request& req, const std::string& token);
 
 }  // namespace glint

@@ -218,7 +218,6 @@ void HttpApi::install_limits(httplib::Server& server) const {
 void HttpApi::install_hooks(httplib::Server& server) {
     server.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
         t_request_start = Clock::now();
-        if (config_.token.empty() || !needs_token(req.path)) return httplib::Server::HandlerResponse::Unhandled;
         const std::string refusal = check_token(req, config_.token);
         if (refusal.empty()) return httplib::Server::HandlerResponse::Unhandled;
         res.set_header("WWW-Authenticate", "Bearer");

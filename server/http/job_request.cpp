@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "base/files.h"
+#include "io/json_text.h"
 #include "service/priority.h"
 
 namespace glint {
@@ -107,16 +108,23 @@ LoadedScene parse_preset_request(const nlohmann::json& request, const std::files
 
 // The top-level "priority" of any job body, which is the job's and not the scene's.
 int priority_of(const nlohmann::json& request) {
-    if (!request.is_object() || !request.contains("priority")) return 0;
-    const nlohmann::json& v = request.at("priority");
-    if (!v.is_number_integer() || v.get<int64_t>() < kMinPriority || v.get<int64_t>() > kMaxPriority)
+    return request.is_object() && request.contains("priority") ? priority_in(request.at("priority")) : 0;
+}
+
+}  // namespace
+
+// An integer; 2.0 is not one, as no integer of a job request is. nlohmann keeps a number >= 0
+// unsigned, and 18446744073709551615 read as int64_t would be -1: it is compared as it is.
+int priority_in(const nlohmann::json& v) {
+    const bool in_range = v.is_number_unsigned() ? v.get<uint64_t>() <= uint64_t(kMaxPriority)
+                                                 : v.is_number_integer() && v.get<int64_t>() >= kMinPriority &&
+                                                       v.get<int64_t>() <= kMaxPriority;
+    if (!in_range)
         throw InvalidRequest("must be an integer in [" + std::to_string(kMinPriority) + ", " +
                                  std::to_string(kMaxPriority) + "]",
                              "priority");
     return v.get<int>();
 }
-
-}  // namespace
 
 std::filesystem::path preset_path(const std::filesystem::path& scenes, const std::string& name) {
     if (!is_preset_name(name)) return {};
@@ -124,30 +132,22 @@ std::filesystem::path preset_path(const std::filesystem::path& scenes, const std
     return std::filesystem::is_regular_file(file) ? file : std::filesystem::path{};
 }
 
-JobRequest parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits) {
-    nlohmann::json request;
+nlohmann::json parse_request_json(const std::string& body) {
     try {
-        // Bounded like the scene parser: 16 MiB of '[' would otherwise build 16 M nested arrays.
-        request = nlohmann::json::parse(
-            body, [](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
-                if (depth > kMaxJsonDepth)
-                    throw MalformedRequest("JSON nested deeper than " +
-                                           std::to_string(kMaxJsonDepth) + " levels");
-                return true;
-            });
-    } catch (const nlohmann::json::exception&) {  // syntax, or a number out of range (1e999)
-        // Throws with the scene parser's message for it.
-        load_checked([&] { return parse_scene(body, scenes, limits); });
+        return parse_json_text(body);
+    } catch (const JsonTextError& e) {
+        throw MalformedRequest(e.what());
     }
-    // Both paths end with check_settings(): parse_scene's own, or apply_film_overrides'.
+}
+
+JobRequest parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits) {
+    nlohmann::json request = parse_request_json(body);
+    // Both paths end with check_settings(): scene_from_json's own, or apply_film_overrides'.
     const int priority = priority_of(request);
     if (request.is_object() && request.contains("preset"))
         return {parse_preset_request(request, scenes, limits), priority};
-    if (request.is_object() && request.contains("priority")) {
-        request.erase("priority");
-        return {load_checked([&] { return parse_scene(request.dump(), scenes, limits); }), priority};
-    }
-    return {load_checked([&] { return parse_scene(body, scenes, limits); }), priority};
+    if (request.is_object()) request.erase("priority");  // the job's, not the scene's
+    return {load_checked([&] { return scene_from_json(request, scenes, limits); }), priority};
 }
 
 nlohmann::json list_presets(const std::filesystem::path& scenes) {
@@ -159,8 +159,8 @@ nlohmann::json list_presets(const std::filesystem::path& scenes) {
     nlohmann::json presets = nlohmann::json::array();
     for (const auto& file : files) {
         try {
-            const nlohmann::json scene =
-                nlohmann::json::parse(read_file(file.string(), size_t(16) << 20));
+            const std::vector<uint8_t> bytes = read_file(file.string(), size_t(16) << 20);
+            const nlohmann::json scene = parse_json_text(std::string(bytes.begin(), bytes.end()));
             const nlohmann::json film = scene.value("film", nlohmann::json::object());
             presets.push_back({{"name", file.stem().string()},
                                {"description", scene.value("description", "")},

@@ -14,10 +14,18 @@
 
 namespace glint {
 
+// A request body as JSON (io/json_text.h); MalformedRequest, naming the byte at fault, if it
+// is not.
+nlohmann::json parse_request_json(const std::string& body);
+
 struct JobRequest {
     LoadedScene scene;
     int priority = 0;  // in [kMinPriority, kMaxPriority] (service/priority.h)
 };
+
+// A job's priority from its JSON value; InvalidRequest (path "priority") unless an integer in
+// [kMinPriority, kMaxPriority].
+int priority_in(const nlohmann::json& value);
 
 // Throws MalformedRequest, InvalidRequest or NotFound (an unknown preset).
 JobRequest parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits);

@@ -2,14 +2,20 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
+#include <httplib.h>
+
+#include "http/auth.h"
+#include "http/job_patch.h"
 #include "http/job_request.h"
 #include "io/fingerprint.h"
 #include "io/obj_loader.h"
 #include "io/partial_file.h"
 #include "io/scene_loader.h"
+#include "service/priority.h"
 #include "service/service_config.h"
 
 namespace glint::fuzz {
@@ -21,6 +27,62 @@ std::string text(const uint8_t* data, size_t size) { return std::string(reinterp
 void require(bool property) {
     if (!property) std::abort();
 }
+
+// One request read from memory instead of a socket; what the server writes back is dropped.
+class MemoryStream final : public httplib::Stream {
+public:
+    explicit MemoryStream(std::string request) : request_(std::move(request)) {}
+    bool is_readable() const override { return true; }
+    bool is_writable() const override { return true; }
+    ssize_t read(char* ptr, size_t size) override {
+        const size_t n = std::min(size, request_.size() - read_);
+        std::memcpy(ptr, request_.data() + read_, n);
+        read_ += n;
+        return ssize_t(n);
+    }
+    ssize_t write(const char*, size_t size) override { return ssize_t(size); }
+    void get_remote_ip_and_port(std::string& ip, int& port) const override { loopback(ip, port); }
+    void get_local_ip_and_port(std::string& ip, int& port) const override { loopback(ip, port); }
+    socket_t socket() const override { return INVALID_SOCKET; }
+
+private:
+    static void loopback(std::string& ip, int& port) {
+        ip = "127.0.0.1";
+        port = 8080;
+    }
+    std::string request_;
+    size_t read_ = 0;
+};
+
+// cpp-httplib's server with no routes, whose token check is the API's: process_request() is
+// what GuardedServer runs for each request, so the target goes through the same request-line
+// split, path decoding and parse_query_text as a real request's.
+class TokenServer final : public httplib::Server {
+public:
+    static constexpr const char* kToken = "secret";
+
+    TokenServer() {
+        set_pre_routing_handler([](const httplib::Request& req, httplib::Response&) {
+            require(check_token(req, kToken).empty() == admissible(req));
+            return HandlerResponse::Unhandled;
+        });
+    }
+    void serve(const std::string& request) {
+        MemoryStream stream(request);
+        bool closed = false;
+        process_request(stream, true, closed, nullptr);
+    }
+
+private:
+    // The property: a job route admits a request only with the exact token, in the header, or
+    // in the query where a route allows it and no header is sent.
+    static bool admissible(const httplib::Request& req) {
+        if (!needs_token(req.path)) return true;
+        const std::string header = req.get_header_value("Authorization");
+        if (!header.empty()) return header == std::string("Bearer ") + kToken;
+        return req.has_param("token") && req.get_param_value("token") == kToken && token_in_query_allowed(req);
+    }
+};
 
 }  // namespace
 
@@ -71,6 +133,19 @@ void job_request(const uint8_t* data, size_t size) {
     try {
         const LoadedScene loaded = parse_job_request(text(data, size), scenes_folder(), ServiceConfig{}.scene).scene;
         require(loaded.scene != nullptr);
+    } catch (const ServiceError&) {
+    }
+}
+
+void query(const uint8_t* data, size_t size) {
+    static TokenServer server;
+    server.serve("GET " + text(data, size) + " HTTP/1.1\r\nHost: localhost\r\n\r\n");
+}
+
+void job_patch(const uint8_t* data, size_t size) {
+    try {
+        const JobPatch patch = parse_job_patch(text(data, size));
+        require(!patch.priority || (*patch.priority >= kMinPriority && *patch.priority <= kMaxPriority));
     } catch (const ServiceError&) {
     }
 }

@@ -19,5 +19,9 @@ void scene(const uint8_t* data, size_t size);        // scene JSON -> parse_scen
 void obj(const uint8_t* data, size_t size);          // OBJ text -> parse_obj, to_triangles
 void partial(const uint8_t* data, size_t size);      // partial file minus its checksum -> decode_partial
 void job_request(const uint8_t* data, size_t size);  // POST /render and /jobs body -> parse_job_request
+// A GET request's target (/jobs/ID/stream?token=...) -> cpp-httplib's request parsing, as the
+// server runs it (path decoding, parse_query_text), then the token check (check_token).
+void query(const uint8_t* data, size_t size);
+void job_patch(const uint8_t* data, size_t size);  // PATCH /jobs/{id} body -> parse_job_patch
 
 }  // namespace glint::fuzz

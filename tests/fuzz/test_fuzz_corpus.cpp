@@ -43,6 +43,8 @@ TEST(FuzzCorpus, SceneInputsEndCleanly) { EXPECT_GT(replay("scene", fuzz::scene)
 TEST(FuzzCorpus, ObjInputsEndCleanly) { EXPECT_GT(replay("obj", fuzz::obj), 0u); }
 TEST(FuzzCorpus, PartialInputsEndCleanly) { EXPECT_GT(replay("partial", fuzz::partial), 0u); }
 TEST(FuzzCorpus, JobRequestInputsEndCleanly) { EXPECT_GT(replay("job_request", fuzz::job_request), 0u); }
+TEST(FuzzCorpus, QueryInputsEndCleanly) { EXPECT_GT(replay("query", fuzz::query), 0u); }
+TEST(FuzzCorpus, JobPatchInputsEndCleanly) { EXPECT_GT(replay("job_patch", fuzz::job_patch), 0u); }
 
 // Each input that crashed a harness, fed to the parser it crashed, ends in its clean error.
 template <typename Error, typename Parse>
@@ -69,11 +71,11 @@ TEST(FuzzRegressions, EachCrashingInputEndsInItsCleanError) {
     auto text = [](const std::vector<uint8_t>& b) { return std::string(b.begin(), b.end()); };
     EXPECT_EQ(error_from<SceneError>("scene/number-overflow.json",
                                      [&](const auto& b) { parse_scene(text(b), fuzz::mesh_folder()); }),
-              "malformed JSON: number overflow parsing '1e2612'");
+              "malformed JSON at byte 25: number overflow parsing '1e2612'");
     EXPECT_EQ(error_from<ServiceError>("job_request/number-overflow.json", [&](const auto& b) {
                   parse_job_request(text(b), fuzz::scenes_folder(), ServiceConfig{}.scene);
               }),
-              "malformed JSON: number overflow parsing '1e999'");
+              "malformed JSON at byte 34: number overflow parsing '1e999'");
     EXPECT_EQ(error_from<PartialError>("partial/unknown-encoding.bin",
                                        [](const auto& b) { decode_partial(with_checksum(b)); }),
               "unknown PNG encoding 168 (0 gamma 2.2, 1 sRGB)");

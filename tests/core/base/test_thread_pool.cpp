@@ -1,8 +1,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <future>
+#include <stdexcept>
 #include <string>
 
 #include "base/thread_pool.h"
@@ -93,6 +100,38 @@ TEST(ThreadPool, TurnsFollowTheBatchesWeights) {
     EXPECT_EQ(count(0, 40, 'a'), 10) << order;
     EXPECT_EQ(count(40, 60, 'a'), 10) << order;  // equal weights: round-robin
     EXPECT_EQ(count(40, 60, 'b'), 10) << order;
+}
+
+// The process's address space in use now, from /proc (its first field, in pages).
+rlim_t address_space_in_use() {
+    std::ifstream statm("/proc/self/statm");
+    rlim_t pages = 0;
+    statm >> pages;
+    return pages * rlim_t(sysconf(_SC_PAGESIZE));
+}
+
+// A thread the system refuses (here: no address space left for its stack) ends the constructor
+// in a runtime_error, after it joined the threads it had started, never in std::terminate. In a
+// child process, so that the address-space limit cannot starve other tests.
+TEST(ThreadPoolDeathTest, ARefusedThreadIsAnErrorNotAnAbort) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    GTEST_SKIP() << "the sanitizers reserve terabytes of address space: no limit on it can be set";
+#endif
+    EXPECT_EXIT(
+        {
+            rlimit limit{};
+            getrlimit(RLIMIT_AS, &limit);
+            limit.rlim_cur = address_space_in_use() + (rlim_t(64) << 20);  // a few 8 MiB stacks
+            setrlimit(RLIMIT_AS, &limit);
+            try {
+                ThreadPool pool(ThreadPool::kMaxThreads);
+            } catch (const std::runtime_error& e) {
+                std::fprintf(stderr, "%s\n", e.what());
+                std::_Exit(0);
+            }
+            std::_Exit(1);
+        },
+        ::testing::ExitedWithCode(0), "cannot start render thread [0-9]+ of 1024: ");
 }
 
 }  // namespace

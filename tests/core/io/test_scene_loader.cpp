@@ -106,13 +106,29 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
 }
 
 TEST(SceneLoader, MalformedAndHostileJsonIsRejectedCleanly) {
-    EXPECT_EQ(error_of("{\"film\": "), "malformed JSON: parse error at line 1, column 10: syntax error while parsing value - unexpected end of input; expected '[', '{', or a literal");
+    EXPECT_EQ(error_of("{\"film\": "), "malformed JSON at byte 10: syntax error while parsing value - unexpected end of input; expected '[', '{', or a literal");
     EXPECT_EQ(error_of("[1, 2]"), "must be an object");
     EXPECT_EQ(error_of("{\"x\": NaN}").rfind("malformed JSON", 0), 0u);
     EXPECT_EQ(error_of(std::string(100000, '[') + std::string(100000, ']')), "JSON nested deeper than 32 levels");
     // Found by fuzzing (tests/fuzz/regressions/scene/number-overflow.json): nlohmann reports a
     // number beyond double's range as out_of_range, not parse_error; it escaped as a crash.
-    EXPECT_EQ(error_of(R"({"film": {"width": 1e2612}})"), "malformed JSON: number overflow parsing '1e2612'");
+    EXPECT_EQ(error_of(R"({"film": {"width": 1e2612}})"), "malformed JSON at byte 25: number overflow parsing '1e2612'");
+}
+
+// nlohmann's lexer reads a NUL byte as the end of the input: a scene followed by a NUL and more
+// bytes was accepted. Nothing but whitespace may follow the scene, and the message names where.
+TEST(SceneLoader, NothingButWhitespaceFollowsTheScene) {
+    EXPECT_EQ(parse_scene("{\"film\": {\"spp\": 8}} \n\t\r\n", {}).settings.spp, 8u);
+    EXPECT_EQ(error_of(std::string("{\"film\": {\"spp\": 8}}\0{\"objects\": 1}", 36)), "malformed JSON at byte 21: NUL byte");
+    EXPECT_EQ(error_of("{\"film\": {\"spp\": 8}} }"),
+              "malformed JSON at byte 22: syntax error while parsing value - unexpected '}'; expected end of input");
+    try {
+        parse_scene(std::string("{}\0", 3), {});
+        ADD_FAILURE() << "a NUL byte was accepted";
+    } catch (const SceneError& e) {
+        EXPECT_TRUE(e.malformed());
+        EXPECT_EQ(e.path(), "");
+    }
 }
 
 class SceneFolder : public ::testing::Test {
@@ -131,6 +147,18 @@ protected:
     }
     std::filesystem::path root_;
 };
+
+// The file as glint render reads it: every byte, the NUL and what follows it included.
+TEST_F(SceneFolder, AFileWithBytesAfterItsSceneIsMalformed) {
+    write(root_ / "scene" / "nul.json", std::string("{}\0garbage", 10));
+    try {
+        load_scene(root_ / "scene" / "nul.json");
+        ADD_FAILURE() << "a NUL byte was accepted";
+    } catch (const SceneError& e) {
+        EXPECT_STREQ(e.what(), "malformed JSON at byte 3: NUL byte");
+        EXPECT_TRUE(e.malformed());
+    }
+}
 
 TEST_F(SceneFolder, LoadsMeshesRelativeToTheSceneWithTransforms) {
     const LoadedScene s = parse_scene(R"({"objects": [{"type": "mesh", "file": "meshes/quad.obj",

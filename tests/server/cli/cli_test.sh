@@ -28,8 +28,54 @@ check "a bad scene exits 1" test $? -eq 1
 check "a bad scene names the JSON path" grep -q "bad.json: objects\[0\].radius: must be > 0" "$work/stderr"
 check "a bad scene writes no image" test ! -e "$work/bad.png"
 
-"$glint" render "$work/tiny.json" -o "$work/x.png" --spp 0 2> "$work/stderr"
-check "--spp 0 exits 1 naming the field" bash -c "grep -q 'film.spp: must be in' '$work/stderr'"
+# Every numeric option has a range (server/cli/option_range.h): a value outside it, or no number,
+# is one line naming the option and the range, with CLI11's exit code for a value that fails its
+# check (105); never an abort (134: `--threads 100000` once failed to start its threads).
+refused() {  # the line expected, then glint's arguments
+  local expected=$1 status
+  shift
+  timeout 20 "$glint" "$@" > /dev/null 2> "$work/stderr"
+  status=$?
+  check "glint $* exits 105 (got $status)" test "$status" -eq 105
+  check "glint $* says: $expected" grep -qxF -- "$expected" "$work/stderr"
+}
+threads="--threads: must be an integer in [0, 1024]"
+refused "$threads" render "$work/tiny.json" -o "$work/x.png" --threads 100000
+refused "$threads" serve --threads 100000
+refused "$threads" trace-rays mesh.obj rays.rays --threads -1
+refused "--spp: must be an integer in [1, 1048576]" render "$work/tiny.json" -o "$work/x.png" --spp 0
+refused "--width: must be an integer in [1, 16384]" render "$work/tiny.json" -o "$work/x.png" --width 1e3
+refused "--seed: must be an integer in [0, 9223372036854775807]" render "$work/tiny.json" -o "$work/x.png" --seed 18446744073709551615
+refused "--checkpoint-interval: must be a number in [0, 3600]" render "$work/tiny.json" -o "$work/x.png" --checkpoint-interval nan
+refused "--port: must be an integer in [1, 65535]" serve --port 70000
+# The stop conditions are the film's: one check (check_settings) for a scene file, a request and
+# these options, so the message is the scene's.
+"$glint" render "$work/tiny.json" -o "$work/x.png" --time-limit inf 2> "$work/stderr"
+check "--time-limit inf exits 1" test $? -eq 1
+check "--time-limit inf is refused as film.time_limit" \
+  grep -qF "tiny.json: film.time_limit: must be a finite number >= 0 (0: off)" "$work/stderr"
+"$glint" render "$work/tiny.json" -o "$work/x.png" --region 2,0,9,6 2> "$work/stderr"
+check "--region beyond the image exits 1" test $? -eq 1
+check "--region beyond the image names the bounds" \
+  grep -qF "film.region: [2, 0, 9, 6] must satisfy 0 <= x0 < x1 <= width (8) and 0 <= y0 < y1 <= height (6)" "$work/stderr"
+"$glint" render "$work/tiny.json" -o "$work/whole.png" --hdr "$work/whole.pfm" > /dev/null 2>&1
+"$glint" render "$work/tiny.json" -o "$work/window.png" --hdr "$work/window.pfm" --region 2,1,7,5 > /dev/null 2>&1
+check "--region writes the window: a 5x4 PFM" grep -qa "^5 4$" "$work/window.pfm"
+refused "--max-jobs: must be an integer in [1, 256]" serve --max-jobs 100000
+refused "--max-queued: must be an integer in [1, 1024]" serve --max-queued 0
+refused "--store-limit: must be an integer in [1, 9223372036854775807]" serve --store-limit -1
+refused "--farm-parts: must be an integer in [1, 10000]" serve --farm-parts 0
+refused "--repeat: must be an integer in [1, 1000]" trace-rays mesh.obj rays.rays --repeat 0
+# A thread the system refuses within the range (here: no address space left for its stack) ends
+# the command with one line and exit 1 once the threads started are stopped, never an abort. Not
+# under AddressSanitizer, whose shadow memory needs terabytes of address space to start at all.
+if ! ldd "$glint" | grep -q libasan; then
+  (ulimit -v 400000; "$glint" render "$work/tiny.json" -o "$work/x.png" --threads 1024) > /dev/null 2> "$work/stderr"
+  check "a render whose threads the system refuses exits 1" test $? -eq 1
+  check "and says which thread failed" grep -q "^glint: cannot start render thread [0-9]* of 1024: " "$work/stderr"
+fi
+"$glint" render --help > "$work/stdout"
+check "--help shows an option's range" grep -q -- "--threads UINT:\[0, 1024\]" "$work/stdout"
 "$glint" render "$work/missing.json" -o "$work/x.png" 2> "$work/stderr"
 check "a missing scene file exits 1" grep -q "cannot open" "$work/stderr"
 
