@@ -151,6 +151,7 @@ const startRender = () => submit(requestBody());
 // Shows a job in the main view: live (stream and events) while it is queued or running, its
 // final PNG once it has ended. Its id goes into the URL (?job=ID), so a reload comes back to it.
 function showJob(status) {
+  if (shown?.id === status.id && shown.events) return;  // already live here: keep its plot
   if (shown?.events) shown.events.close();
   shown = { id: status.id, status, events: null };
   errorHistory = [];
@@ -220,8 +221,11 @@ async function showJobFromUrl() {
   else figures.state.textContent = `job ${id}: ${status.error}`;
 }
 
+// Small errors (a target of 1e-6) in exponent form rather than a row of zeros.
 function format(value, digits = 3) {
-  return value === null || value === undefined || !isFinite(value) ? "–" : Number(value).toPrecision(digits);
+  if (value === null || value === undefined || !isFinite(value)) return "–";
+  const v = Number(value);
+  return v !== 0 && Math.abs(v) < 1e-3 ? v.toExponential(digits - 1) : v.toPrecision(digits);
 }
 
 function seconds(t) {
@@ -479,6 +483,7 @@ function progress(s) {
 function updateRow(row, s) {
   row.status = s;
   row.dataset.state = s.state;
+  row.classList.toggle("region", Boolean(s.region));
   const q = (selector) => row.querySelector(selector);
   q(".state").textContent = s.state;
   q(".state").title = s.stop_reason ? `stopped by ${STOP_REASONS[s.stop_reason] || s.stop_reason}` : s.error || "";

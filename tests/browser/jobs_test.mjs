@@ -2,9 +2,10 @@
 // a real `glint serve`: a job started from the page and one POSTed by the test both listed,
 // newest first; a priority changed and a job cancelled from the list; a reload that comes back to
 // the shown job (?job=ID) and keeps refining it; a rectangle dragged with the Region toggle on
-// (at 8× zoom, scrolled) rendered as a region job of exactly those pixels; a job with a time
-// limit that stops by it, with its target error drawn in the error plot; and the requests the
-// page makes while idle. Then stops the server with SIGTERM and expects a clean exit.
+// (at 8× zoom, scrolled) rendered as a region job of exactly those pixels, and one dragged on that
+// window offset by its origin; a job with a time limit that stops by it, with its target error
+// drawn in the error plot; and the requests the page makes while idle. Then stops the server with
+// SIGTERM and expects a clean exit.
 // Usage: node jobs_test.mjs GLINT_BINARY SOURCE_DIR [SCREENSHOT.png]
 import { check, finish, imageHash, launchBrowser, sleep, startServer, waitFor } from "./support.mjs";
 
@@ -120,9 +121,27 @@ async function regionDrag(page, shownId) {
   const size = await pngSize(`${base}/jobs/${id}/image.png`);
   check("the region job's PNG is the window (51×51)", size === "51x51", size);
   check("the region job is listed first", (await rowIds(page))[0] === id);
+  await waitFor(async () => (await status(id)).state === "done", 20000, "the region job to end");
+  await regionOfRegion(page, id);
   await page.click("#region-mode");
   await page.click('button.zoom[data-zoom="1"]');
-  await waitFor(async () => (await status(id)).state === "done", 20000, "the region job to end");
+}
+
+// A rectangle dragged on a region job's window lies in the full image: the window's offset added.
+async function regionOfRegion(page, windowId) {
+  await waitFor(() => page.evaluate(() => document.getElementById("image").naturalWidth === 51), 10000, "the window's PNG");
+  await page.click('button.zoom[data-zoom="2"]');
+  const box = await page.locator("#image").boundingBox();
+  const at = (x, y) => [box.x + (x + 0.5) * 2, box.y + (y + 0.5) * 2];
+  await page.mouse.move(...at(10, 5));
+  await page.mouse.down();
+  await page.mouse.move(...at(20, 15), { steps: 4 });
+  await page.mouse.up();
+  await waitFor(async () => (await shownJob(page)) !== windowId, 10000, "the region job of the window");
+  const r = (await status(await shownJob(page))).region || {};
+  check("a rectangle dragged on a window is offset by the window's origin",
+        r.x0 === 50 && r.y0 === 25 && r.x1 === 61 && r.y1 === 36 && r.full_width === 128, JSON.stringify(r));
+  await waitFor(async () => (await page.textContent("#fig-state")) === "done", 20000, "the second region job to end");
 }
 
 // Rows whose amber pixels (the target line's colour) run at least `min` long: the dashed line
@@ -146,7 +165,9 @@ async function stopConditions(page) {
   await page.locator("#spp").fill("100");
   await page.fill("#time-limit", "2");
   await page.fill("#target-error", "0.000001");
+  const before = await shownJob(page);
   await page.click("#render");
+  await waitFor(async () => (await shownJob(page)) !== before, 10000, "the time-limited job");
   await waitFor(async () => ["done", "cancelled", "failed"].includes(await page.textContent("#fig-state")), 20000,
                 "the time-limited job to end");
   const id = await shownJob(page);
