@@ -87,13 +87,20 @@ std::vector<std::string> SlurmFarm::part_command(const std::filesystem::path& fo
     // options given make the job's own settings, so the parts' fingerprint is the job's.
     std::filesystem::path scene;
     std::vector<std::string> options;
-    const nlohmann::json parsed = nlohmann::json::parse(request, nullptr, false);
+    nlohmann::json parsed = nlohmann::json::parse(request, nullptr, false);
     if (parsed.is_object() && parsed.contains("preset") && parsed.at("preset").is_string()) {
         scene = scenes_ / (parsed.at("preset").get<std::string>() + ".json");
     } else {
         scene = folder / "scene.json";
-        write_file(scene.string(), std::vector<uint8_t>(request.begin(), request.end()));
+        parsed.erase("priority");  // the job's, not the scene's: glint render refuses it
+        const std::string text = parsed.dump();
+        write_file(scene.string(), std::vector<uint8_t>(text.begin(), text.end()));
         options = {"--scenes", scenes_.string()};
+    }
+    if (!settings.whole_image()) {
+        const Region& r = settings.region;
+        options.insert(options.end(), {"--region", std::to_string(r.x0) + "," + std::to_string(r.y0) + "," +
+                                                       std::to_string(r.x1) + "," + std::to_string(r.y1)});
     }
     const std::vector<std::string> film = {
         "--width", std::to_string(settings.width), "--height", std::to_string(settings.height),

@@ -399,5 +399,36 @@ TEST_F(Store, EvictsTheOldestFinishedJobsBeyondItsLimitNeverAnUnfinishedOne) {
     EXPECT_EQ(server.stop(), 0);
 }
 
+// A priority changed by PATCH, and why a job stopped, are the store's too: a restarted server
+// starts the queued jobs in the order the priorities say and reports the ended ones as they were.
+TEST_F(Store, PrioritiesAndStopReasonsSurviveARestart) {
+    const std::string endless = R"({"preset": "cornell", "width": 16, "height": 12, "spp": 65536)";
+    std::string timed, blocker, low, high;
+    {
+        ServerProcess server(store_, log(1), {"--max-jobs", "1"});
+        timed = server.submit(endless + R"(, "time_limit": 0.2})");
+        EXPECT_EQ(server.wait_until_final(timed)["stop_reason"], "time_limit");
+        blocker = server.submit(endless + "}");
+        low = server.submit(endless + R"(, "priority": 1})");
+        high = server.submit(endless + "}");
+        auto res = server.http().Patch(("/jobs/" + high).c_str(), R"({"priority": 6})", "application/json");
+        ASSERT_TRUE(res && res->status == 200);
+        server.kill_now();
+    }
+    ServerProcess server(store_, log(2), {"--max-jobs", "1"});
+    EXPECT_EQ(server.get_json("/jobs/" + timed)["stop_reason"], "time_limit");
+    EXPECT_EQ(server.get_json("/jobs/" + high)["priority"], 6);
+    EXPECT_EQ(server.get_json("/jobs/" + low)["priority"], 1);
+    // The blocker was running before the kill, but the queue goes by priority: the highest first.
+    json running;
+    for (int i = 0; i < 500 && running.is_null(); ++i) {
+        for (const auto& id : {blocker, low, high})
+            if (server.get_json("/jobs/" + id)["state"] == "running") running = id;
+        std::this_thread::sleep_for(10ms);
+    }
+    EXPECT_EQ(running, high);
+    EXPECT_EQ(server.stop(), 0);
+}
+
 }  // namespace
 }  // namespace glint
