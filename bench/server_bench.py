@@ -4,8 +4,12 @@
 1. Time from POST /jobs to the first complete PNG part of /jobs/{id}/stream (256x192 Cornell box).
 2. Server overhead: wall time of POST /render against `glint render` for the same job, alternated.
 3. Requests/s that GET /jobs/{id} holds while a render runs (wrk, 10 s, loopback only).
+4. What the page's jobs panel costs: GET /jobs with 64 jobs listed (the server keeps 64 finished
+   jobs by default), its time and size; the page asks once a second.
 
-Usage (from the repository root, after building): python3 bench/server_bench.py [runs]
+Usage (from the repository root, after building):
+    python3 bench/server_bench.py [runs] [--glint PATH] [--first-only]
+--first-only measures figure 1 alone (to compare two builds side by side).
 Prints a markdown report on stdout.
 """
 import http.client
@@ -17,8 +21,10 @@ import subprocess
 import sys
 import time
 
-GLINT = "build/server/glint"
-RUNS = int(sys.argv[1]) if len(sys.argv) > 1 else 7
+ARGS = sys.argv[1:]
+GLINT = ARGS[ARGS.index("--glint") + 1] if "--glint" in ARGS else "build/server/glint"
+FIRST_ONLY = "--first-only" in ARGS
+RUNS = int(ARGS[0]) if ARGS and ARGS[0].isdigit() else 7
 JOB = {"preset": "cornell", "width": 256, "height": 192}
 
 
@@ -82,6 +88,21 @@ def wrk_status(port):
     return float(rate), latency
 
 
+def job_list(port):
+    """Median time and the size of GET /jobs with 64 finished jobs listed."""
+    for _ in range(64):
+        status, _ = request(port, "POST", "/render", dict(JOB, width=16, height=12, spp=4))
+        assert status == 200
+    times, size = [], 0
+    for _ in range(max(RUNS, 20)):
+        start = time.perf_counter()
+        status, data = request(port, "GET", "/jobs")
+        times.append(time.perf_counter() - start)
+        size = len(data)
+        assert status == 200 and len(json.loads(data)) == 64
+    return statistics.median(times), size
+
+
 def main():
     port = free_port()
     server = subprocess.Popen([GLINT, "serve", "--port", str(port), "--threads", "2"],
@@ -94,17 +115,23 @@ def main():
             except OSError:
                 time.sleep(0.05)
         firsts = sorted(first_png_seconds(port) for _ in range(RUNS))
-        http_s, cli_s = overhead(port, 64)
-        rate, latency = wrk_status(port)
+        if not FIRST_ONLY:
+            http_s, cli_s = overhead(port, 64)
+            rate, latency = wrk_status(port)
+            list_s, list_bytes = job_list(port)
     finally:
         server.terminate()
         server.wait()
     print(f"| figure | value |\n|---|---|")
     print(f"| POST /jobs to first streamed PNG, 256x192 (median of {RUNS}) | {1e3 * statistics.median(firsts):.0f} ms "
           f"(min {1e3 * firsts[0]:.0f}, max {1e3 * firsts[-1]:.0f}) |")
+    if FIRST_ONLY:
+        return
     print(f"| 256x192, 64 spp: POST /render / glint render (medians of {RUNS}, alternated) | "
           f"{http_s:.2f} s / {cli_s:.2f} s = {http_s / cli_s:.3f} |")
     print(f"| GET /jobs/{{id}} during a render, wrk -t2 -c16 -d10s | {rate:.0f} requests/s, mean latency {latency} |")
+    print(f"| GET /jobs with 64 jobs listed (the page's poll, once a second) | {1e3 * list_s:.1f} ms, "
+          f"{list_bytes / 1024:.0f} KiB |")
 
 
 if __name__ == "__main__":
