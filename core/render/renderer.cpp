@@ -179,16 +179,21 @@ Image RenderJob::preview(ThreadPool& pool) const {
     Image image(window.width(), window.height());
     const bool sobol = settings_.sampler == Sampler::sobol;
     const uint32_t index = settings_.first_sample;
-    pool.parallel_for(size_t(window.height()), [&](size_t row) {
-        const int y = window.y0 + int(row);
-        for (int x = window.x0; x < window.x1; ++x) {
-            const uint64_t pixel = uint64_t(y) * settings_.width + x;
+    const int rows = (window.height() + kPreviewBlock - 1) / kPreviewBlock;
+    pool.parallel_for(size_t(rows), [&](size_t row) {
+        const int y0 = window.y0 + int(row) * kPreviewBlock, y1 = std::min(y0 + kPreviewBlock, window.y1);
+        for (int x0 = window.x0; x0 < window.x1; x0 += kPreviewBlock) {
+            // The block's path goes through its top-left pixel.
+            const uint64_t pixel = uint64_t(y0) * settings_.width + x0;
             Rng rng = camera_stream(settings_.seed, pixel, index);
             const PixelSampler sampler(settings_.seed, pixel, samples_per_round(settings_.filter));
             const StratifiedSample stratified = sobol ? sampler.sample(index) : StratifiedSample{};
-            const Ray ray = camera_ray(x, y, index, sobol ? stratified.film : nullptr, rng);
-            const Rgb value = tracer_.radiance(ray, rng, kNoLightPath, sobol ? &stratified.first : nullptr);
-            image.set(x - window.x0, int(row), is_finite(value) ? value : Rgb{0});
+            const Ray ray = camera_ray(x0, y0, index, sobol ? stratified.film : nullptr, rng);
+            Rgb value = tracer_.radiance(ray, rng, kNoLightPath, sobol ? &stratified.first : nullptr);
+            if (!is_finite(value)) value = Rgb{0};
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < std::min(x0 + kPreviewBlock, window.x1); ++x)
+                    image.set(x - window.x0, y - window.y0, value);
         }
     }, &weight_);
     return image;

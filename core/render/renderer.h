@@ -45,8 +45,9 @@ public:
     // Thread-safe: the job's share of the pool's turns against other jobs' (thread_pool.h).
     void set_weight(double weight) { weight_ = weight; }
 
-    // A first look at the image, at a quarter of the cost of the first pass: one camera path
-    // per pixel, without light tracing. Thrown away once shown: the film never sees it.
+    // A first look at the image, at a sixteenth of the cost of a first pass of the tent
+    // filter's four samples: one camera path per block of kPreviewBlock² pixels, without light
+    // tracing. Thrown away once shown: the film never sees it.
     Image preview(ThreadPool& pool) const;
     // Continues from a checkpoint taken between passes: `film` holds samples [first_sample,
     // first_sample + spp_done) of every pixel, added in sample order, so run() adds the rest in
@@ -66,6 +67,7 @@ public:
 private:
     using Clock = std::chrono::steady_clock;
     static constexpr int kTileSize = 16;
+    static constexpr int kPreviewBlock = 2;
 
     Rgb sample(int x, int y, uint32_t index) const;
     // The direct view of pixel (x, y) for sample `index` from direct_view_.rays() camera rays.

@@ -8,7 +8,7 @@
 
 namespace glint::testing {
 
-inline LoadedScene scene_from(const std::string& json) { return parse_scene(json, {}); }
+inline LoadedScene scene_from(const std::string& text) { return parse_scene(text, {}); }
 
 // smallpt's Cornell box from scenes/, at 40×30 pixels and `spp` samples a pixel.
 inline LoadedScene small_cornell(uint32_t spp = 64) {
