@@ -1,6 +1,7 @@
 #include "service/job_manager.h"
 
 #include <random>
+#include <system_error>
 
 #include <spdlog/spdlog.h>
 
@@ -25,7 +26,15 @@ JobManager::JobManager(ThreadPool& pool, const ServiceConfig& config)
       config_(config),
       store_(config.store.dir.empty() ? nullptr : std::make_unique<JobStore>(config.store)),
       farm_(config.farm.slurm ? std::make_unique<SlurmFarm>(config.farm, config.scenes) : nullptr) {
-    for (unsigned i = 0; i < config_.max_running; ++i) slots_.emplace_back([this] { slot(); });
+    try {
+        for (unsigned i = 0; i < config_.max_running; ++i) slots_.emplace_back([this] { slot(); });
+    } catch (const std::system_error& e) {  // a thread the system refuses: an error, not an abort
+        const size_t started = slots_.size();
+        shutdown();
+        for (std::thread& t : slots_) t.join();
+        throw std::runtime_error("cannot start job slot " + std::to_string(started + 1) + " of " +
+                                 std::to_string(config_.max_running) + ": " + e.what());
+    }
 }
 
 JobManager::~JobManager() {
