@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """`glint serve --farm slurm` on a Slurm cluster of four nodes started here (cluster.sh): a job's
 parts render on the nodes while the server streams their merged progress; the final image equals
-a local render's bytes, for a preset and for a posted scene with a mesh; cancelling leaves nothing in Slurm's queue; a node killed under a part
+a local render's bytes, for a preset and for a posted region of a scene with a mesh; cancelling leaves nothing in Slurm's queue; a node killed under a part
 loses no sample and counts none twice; a restarted server (--store) finds its farm job again.
 
   farm_test.py GLINT SOURCE_DIR      (as root, with slurmctld slurmd slurm-client munge)
@@ -120,17 +120,20 @@ def refines_and_matches(server, local):
 
 
 def posted_scene(server, work):
-    """A scene posted whole (with a mesh, read from the scenes folder) rather than a preset."""
+    """A scene posted whole (with a mesh, read from the scenes folder) rather than a preset, with a
+    priority (the job's: the parts' scene file must not carry it) and a region (the parts render
+    only the window)."""
     scene = json.load(open(os.path.join(SOURCE, "scenes", "mesh.json")))
-    scene["film"].update({"width": 48, "height": 32, "spp": 64})
+    scene["film"].update({"width": 48, "height": 32, "spp": 64, "region": [5, 3, 41, 29]})
     path = os.path.join(work, "posted.json")
     json.dump(scene, open(path, "w"))
     local = os.path.join(work, "posted.png")
     subprocess.run([GLINT, "render", path, "-o", local, "--scenes", os.path.join(SOURCE, "scenes")], check=True,
                    capture_output=True)
-    job = json.loads(server.request("POST", "/jobs", scene))["id"]
+    job = json.loads(server.request("POST", "/jobs", dict(scene, priority=2)))["id"]
     seen = follow(server, job)
-    check("a posted scene with a mesh ends done on the farm", seen[-1]["state"] == "done")
+    check("a posted region of a scene with a mesh and a priority ends done on the farm", seen[-1]["state"] == "done")
+    check("its window is the region's", (seen[-1]["width"], seen[-1]["height"]) == (36, 26))
     check("and its PNG equals a local render's bytes", server.get(f"/jobs/{job}/image.png") == open(local, "rb").read())
 
 
