@@ -50,16 +50,25 @@ Ray RenderJob::camera_ray(int x, int y, uint32_t index, const double* film, Rng&
     return camera_.generate(fx, fy, lens1, lens2);
 }
 
-Rgb RenderJob::sample(int x, int y, uint32_t index) const {
+RenderJob::CameraSample RenderJob::camera_sample(int x, int y, uint32_t index) const {
     const uint64_t pixel = uint64_t(y) * settings_.width + x;
-    Rng rng = camera_stream(settings_.seed, pixel, index);
+    CameraSample c{camera_stream(settings_.seed, pixel, index),
+                   PixelSampler(settings_.seed, pixel, samples_per_round(settings_.filter)), {}, {},
+                   settings_.sampler == Sampler::sobol};
     // The stratified sampler's numbers (sampler.h); the independent sampler draws them all from
     // the sample's stream, as smallpt does.
-    const bool sobol = settings_.sampler == Sampler::sobol;
-    const PixelSampler sampler(settings_.seed, pixel, samples_per_round(settings_.filter));
-    const StratifiedSample stratified = sobol ? sampler.sample(index) : StratifiedSample{};
-    const Ray ray = camera_ray(x, y, index, sobol ? stratified.film : nullptr, rng);
-    const FirstVertexSamples* first = sobol ? &stratified.first : nullptr;
+    if (c.sobol) c.stratified = c.sampler.sample(index);
+    c.ray = camera_ray(x, y, index, c.sobol ? c.stratified.film : nullptr, c.rng);
+    return c;
+}
+
+Rgb RenderJob::sample(int x, int y, uint32_t index) const {
+    const uint64_t pixel = uint64_t(y) * settings_.width + x;
+    CameraSample c = camera_sample(x, y, index);
+    Rng& rng = c.rng;
+    const PixelSampler& sampler = c.sampler;
+    const Ray& ray = c.ray;
+    const FirstVertexSamples* first = c.first();
     // One light path per camera sample, on its own stream; initialised from trace()'s result in
     // place, where assigning it copied its four vertices (~560 bytes).
     const LightPath light = tracer_.strategies().light_tracing() ? [&] {
@@ -87,8 +96,7 @@ bool RenderJob::should_stop() const { return cancelled_ || Clock::now() >= deadl
 
 Region RenderJob::tile_pixels(size_t tile) const {
     const int x0 = (tile_x0_ + int(tile % tiles_x_)) * kTileSize, y0 = (tile_y0_ + int(tile / tiles_x_)) * kTileSize;
-    return {std::max(x0, traced_.x0), std::max(y0, traced_.y0), std::min(x0 + kTileSize, traced_.x1),
-            std::min(y0 + kTileSize, traced_.y1)};
+    return intersection({x0, y0, x0 + kTileSize, y0 + kTileSize}, traced_);
 }
 
 // Tiles lie on the whole image's grid, so a window's pixels and a whole render's see the same
@@ -125,10 +133,8 @@ void RenderJob::trace_light_paths(int x, int y, uint32_t first, uint32_t last) c
 bool RenderJob::render_pass(ThreadPool& pool, uint32_t first, uint32_t last) {
     if (direct_view_.active() && !direct_view_decided_) {
         pool.parallel_for(size_t(tiles_x_) * tiles_y_, [&](size_t tile) {
-            const Region window = settings_.window(), t = tile_pixels(tile);
-            const Region in{std::max(t.x0, window.x0), std::max(t.y0, window.y0), std::min(t.x1, window.x1),
-                            std::min(t.y1, window.y1)};
-            if (in.width() > 0 && in.height() > 0) direct_view_.decide(tracer_, camera_, in.x0, in.y0, in.x1, in.y1);
+            const Region in = intersection(tile_pixels(tile), settings_.window());
+            if (!in.empty()) direct_view_.decide(tracer_, camera_, in.x0, in.y0, in.x1, in.y1);
         }, &weight_);
         direct_view_decided_ = true;
     }
@@ -177,19 +183,13 @@ void RenderJob::resume(Film film, uint32_t spp_done) {
 Image RenderJob::preview(ThreadPool& pool) const {
     const Region window = settings_.window();
     Image image(window.width(), window.height());
-    const bool sobol = settings_.sampler == Sampler::sobol;
     const uint32_t index = settings_.first_sample;
     const int rows = (window.height() + kPreviewBlock - 1) / kPreviewBlock;
     pool.parallel_for(size_t(rows), [&](size_t row) {
         const int y0 = window.y0 + int(row) * kPreviewBlock, y1 = std::min(y0 + kPreviewBlock, window.y1);
         for (int x0 = window.x0; x0 < window.x1; x0 += kPreviewBlock) {
-            // The block's path goes through its top-left pixel.
-            const uint64_t pixel = uint64_t(y0) * settings_.width + x0;
-            Rng rng = camera_stream(settings_.seed, pixel, index);
-            const PixelSampler sampler(settings_.seed, pixel, samples_per_round(settings_.filter));
-            const StratifiedSample stratified = sobol ? sampler.sample(index) : StratifiedSample{};
-            const Ray ray = camera_ray(x0, y0, index, sobol ? stratified.film : nullptr, rng);
-            Rgb value = tracer_.radiance(ray, rng, kNoLightPath, sobol ? &stratified.first : nullptr);
+            CameraSample c = camera_sample(x0, y0, index);  // the block's path: its top-left pixel's
+            Rgb value = tracer_.radiance(c.ray, c.rng, kNoLightPath, c.first());
             if (!is_finite(value)) value = Rgb{0};
             for (int y = y0; y < y1; ++y)
                 for (int x = x0; x < std::min(x0 + kPreviewBlock, window.x1); ++x)

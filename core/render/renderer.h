@@ -69,6 +69,17 @@ private:
     static constexpr int kTileSize = 16;
     static constexpr int kPreviewBlock = 2;
 
+    // The start of sample `index` of pixel (x, y): its stream, its sampler's numbers and its
+    // camera ray, as both the sample and the preview take them.
+    struct CameraSample {
+        Rng rng;
+        PixelSampler sampler;
+        StratifiedSample stratified;
+        Ray ray;
+        bool sobol;
+        const FirstVertexSamples* first() const { return sobol ? &stratified.first : nullptr; }
+    };
+    CameraSample camera_sample(int x, int y, uint32_t index) const;
     Rgb sample(int x, int y, uint32_t index) const;
     // The direct view of pixel (x, y) for sample `index` from direct_view_.rays() camera rays.
     Rgb direct_view(int x, int y, uint32_t index, const PixelSampler& sampler, Rng& rng) const;

@@ -2,6 +2,7 @@
 // Plain data, so the scene loader and the fingerprint can name a render without the renderer.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 
 #include "base/image.h"
@@ -18,7 +19,13 @@ struct Region {
     int height() const { return y1 - y0; }
     bool contains(int x, int y) const { return x >= x0 && x < x1 && y >= y0 && y < y1; }
     bool operator==(const Region&) const = default;
+    bool empty() const { return x0 >= x1 || y0 >= y1; }
 };
+
+// The pixels in both; empty() if they do not meet.
+inline Region intersection(const Region& a, const Region& b) {
+    return {std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+}
 
 struct RenderSettings {
     int width = 1024, height = 768;  // of the whole image, also for a region job

@@ -90,8 +90,15 @@ void Job::save_final(JobState state, const Progress& progress) const {
 }
 
 void Job::publish(JobState state, const Progress& progress) {
+    publish_frame(render_.film().mean(), state, progress, false);
+}
+
+// Only the render thread publishes, so the progress read here is still the job's when written.
+void Job::publish_preview(const Image& preview) { publish_frame(preview, JobState::running, snapshot().progress, true); }
+
+void Job::publish_frame(Image frame, JobState state, const Progress& progress, bool preview) {
     // Encode outside the lock: watchers only ever wait for the pointer swap.
-    auto image = std::make_shared<const Image>(render_.film().mean());
+    auto image = std::make_shared<const Image>(std::move(frame));
     auto png = std::make_shared<const std::vector<uint8_t>>(encode_png(*image, render_.settings().encoding));
     {
         std::lock_guard lock(mutex_);
@@ -100,20 +107,7 @@ void Job::publish(JobState state, const Progress& progress) {
         snapshot_.progress = progress;
         snapshot_.png = std::move(png);
         snapshot_.image = std::move(image);
-        snapshot_.preview = false;
-    }
-    changed_.notify_all();
-}
-
-void Job::publish_preview(const Image& preview) {
-    auto image = std::make_shared<const Image>(preview);
-    auto png = std::make_shared<const std::vector<uint8_t>>(encode_png(*image, render_.settings().encoding));
-    {
-        std::lock_guard lock(mutex_);
-        snapshot_.frame += 1;
-        snapshot_.png = std::move(png);
-        snapshot_.image = std::move(image);
-        snapshot_.preview = true;
+        snapshot_.preview = preview;
     }
     changed_.notify_all();
 }

@@ -93,6 +93,7 @@ private:
     void publish(JobState state, const Progress& progress);
     // Publishes `image` as a frame without touching the film (the first preview).
     void publish_preview(const Image& image);
+    void publish_frame(Image frame, JobState state, const Progress& progress, bool preview);
     void set_stop(StopReason reason);
     // The job's state.json as it would be in `state`; record_locked() with mutex_ held.
     JobRecord record(JobState state, const std::string& error, const Progress& progress) const;

@@ -72,7 +72,9 @@ TEST_F(Server, QueuedJobsStartByPriorityAsPatched) {
         wait_until_final(running);
         ASSERT_TRUE(wait_running(next)) << "expected " << next << " to start after " << running;
         for (const std::string& other : {low, mid, high, patched})
-            if (other != next) EXPECT_NE(get_json("/jobs/" + other)["state"], "running");
+            if (other != next) {
+                EXPECT_NE(get_json("/jobs/" + other)["state"], "running");
+            }
         running = next;
     }
     client_->Delete(("/jobs/" + running).c_str());
