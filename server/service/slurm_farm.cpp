@@ -10,6 +10,8 @@
 #include <regex>
 #include <sstream>
 
+#include <spdlog/spdlog.h>
+
 #include "base/files.h"
 
 extern char** environ;
@@ -149,9 +151,15 @@ PartCounts SlurmFarm::count(const FarmRun& run) const {
     return counts;
 }
 
+// A busy controller can time scancel out (MessageTimeout), and parts it failed to cancel would
+// hold the cluster's nodes for all their remaining samples: a failure is retried, then logged.
 void SlurmFarm::cancel(const FarmRun& run) const {
     std::string output;
-    run_command({"scancel", run.array, run.merge}, output);
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        output.clear();
+        if (run_command({"scancel", run.array, run.merge}, output) == 0) return;
+    }
+    spdlog::warn("scancel {} {} failed: {}", run.array, run.merge, output);
 }
 
 bool SlurmFarm::refresh(const FarmRun& run, size_t i, PartFilm& part) const {

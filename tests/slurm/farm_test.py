@@ -101,10 +101,16 @@ def same_image(server, job, local, what):
 
 
 def queue_empty():
-    for _ in range(50):
-        if not subprocess.run(["squeue", "-h"], capture_output=True, text=True).stdout.strip():
+    """Whether Slurm's queue empties. A cancelled task stays listed (state CG) until slurmd has
+    ended its processes, which on a busy machine can take seconds, and up to KillWait (30 s)
+    for a process that ignores SIGTERM; what is still listed after that is printed."""
+    listed = ""
+    for _ in range(200):
+        listed = subprocess.run(["squeue", "-h", "-o", "%i %j %t %r"], capture_output=True, text=True).stdout.strip()
+        if not listed:
             return True
         time.sleep(0.2)
+    print("still in Slurm's queue:\n" + listed, flush=True)
     return False
 
 
