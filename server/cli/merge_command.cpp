@@ -3,13 +3,14 @@
 
 #include "base/files.h"
 #include "cli/commands.h"
+#include "io/exr_file.h"
 #include "io/partial_file.h"
 
 namespace glint {
 namespace {
 
 struct MergeOptions {
-    std::string output, hdr;
+    std::string output, hdr, exr;
     std::vector<std::string> parts;
 };
 
@@ -17,6 +18,7 @@ void declare_options(CLI::App& cmd, MergeOptions& o) {
     cmd.add_option("output", o.output, "PNG file to write")->required();
     cmd.add_option("parts", o.parts, "Partial files (glint render --partial)")->required();
     cmd.add_option("--hdr", o.hdr, "Also write the linear image as PFM");
+    cmd.add_option("--exr", o.exr, "Also write an OpenEXR file: the linear image, sample counts, variance and any AOVs");
 }
 
 int run_merge(const MergeOptions& o) {
@@ -32,6 +34,7 @@ int run_merge(const MergeOptions& o) {
     const Image image = merged.film.mean();
     write_file(o.output, encode_png(image, merged.encoding));
     if (!o.hdr.empty()) write_file(o.hdr, encode_pfm(image));
+    if (!o.exr.empty()) write_file(o.exr, encode_film_exr(image, merged.film));
     std::printf("%s: %zu parts, samples [%u, %u) at %dx%d, estimated RMSE %.4g, "
                 "%llu samples dropped (rounds with a non-finite one)\n",
                 o.output.c_str(), o.parts.size(), merged.first_sample, merged.end_sample,

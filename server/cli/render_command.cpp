@@ -1,4 +1,4 @@
-// `glint render`: scene files to PNG (and optionally PFM), or one scene's sample range to a
+// `glint render`: scene files to PNG (and optionally PFM and EXR), or one scene's sample range to a
 // partial file, with progress on the terminal. Ctrl-C stops the render and still writes the
 // image rendered so far.
 #include <chrono>
@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/option_range.h"
 #include "cli/progress_bar.h"
+#include "io/exr_file.h"
 #include "io/film_overrides.h"
 #include "io/fingerprint.h"
 #include "io/partial_file.h"
@@ -24,7 +25,8 @@ namespace {
 
 struct RenderOptions {
     std::vector<std::string> scenes;
-    std::string output, hdr, samples, partial, checkpoint, meshes;
+    std::string output, hdr, exr, samples, partial, checkpoint, meshes;
+    bool aovs = false;
     double checkpoint_interval = 5;
     std::optional<uint32_t> spp;
     std::optional<int> width, height;
@@ -37,7 +39,7 @@ struct RenderOptions {
 
 // Where one scene's results go.
 struct Outputs {
-    std::string png, hdr, partial, checkpoint;
+    std::string png, hdr, exr, partial, checkpoint;
 };
 
 RenderJob* g_interruptible = nullptr;
@@ -70,6 +72,7 @@ FilmOverrides film_overrides(const RenderOptions& o) {
     f.target_error = o.target_error;
     f.time_limit = o.time_limit;
     if (!o.region.empty()) f.region = Region{o.region[0], o.region[1], o.region[2], o.region[3]};
+    if (o.aovs || !o.exr.empty()) f.aovs = true;
     return f;
 }
 
@@ -78,6 +81,7 @@ void write_outputs(const RenderJob& job, uint64_t print, const Outputs& out) {
     const Image image = job.film().mean();
     if (!out.png.empty()) write_file(out.png, encode_png(image, job.settings().encoding));
     if (!out.hdr.empty()) write_file(out.hdr, encode_pfm(image));
+    if (!out.exr.empty()) write_file(out.exr, encode_film_exr(image, job.film()));
     if (!out.partial.empty()) write_file(out.partial, encode_partial(partial_of(job, print, job.progress().spp_done)));
 }
 
@@ -163,7 +167,7 @@ int render_scene(const RenderOptions& o, const std::string& scene, const Outputs
     const Progress p = job.progress();
     std::printf("%s: %s; %u spp at %dx%d in %.2f s, %.3g samples/s, estimated RMSE %.4g, "
                 "%llu samples dropped (rounds with a non-finite one)\n",
-                (out.png.empty() ? out.partial : out.png).c_str(), to_string(reason), p.spp_done, job.settings().width,
+                (!out.png.empty() ? out.png : !out.exr.empty() ? out.exr : out.partial).c_str(), to_string(reason), p.spp_done, job.settings().width,
                 job.settings().height, p.seconds, p.samples_per_second, p.error_estimate,
                 static_cast<unsigned long long>(p.dropped));
     return reason == StopReason::cancelled ? 130 : 0;
@@ -184,13 +188,15 @@ int render_batch(const RenderOptions& o, ThreadPool& pool) {
         std::sort(found.begin(), found.end());
         scenes.insert(scenes.end(), found.begin(), found.end());
     }
-    std::filesystem::create_directories(o.output);
-    if (!o.hdr.empty()) std::filesystem::create_directories(o.hdr);
+    for (const std::string& folder : {o.output, o.hdr, o.exr})
+        if (!folder.empty()) std::filesystem::create_directories(folder);
+    const auto in = [&](const std::string& folder, const std::string& file) {
+        return folder.empty() ? "" : (std::filesystem::path(folder) / file).string();
+    };
     int failed = 0;
     for (const auto& scene : scenes) {
         const std::string stem = scene.stem().string();
-        Outputs out{(std::filesystem::path(o.output) / (stem + ".png")).string(),
-                    o.hdr.empty() ? "" : (std::filesystem::path(o.hdr) / (stem + ".pfm")).string(), "", ""};
+        Outputs out{in(o.output, stem + ".png"), in(o.hdr, stem + ".pfm"), in(o.exr, stem + ".exr"), "", ""};
         const int status = render_scene(o, scene.string(), out, pool);
         if (status == 130) return 130;
         failed += status != 0;
@@ -210,12 +216,12 @@ int run_render(const RenderOptions& o) {
         std::fprintf(stderr, "glint: --samples, --partial and --checkpoint take a single scene file\n");
         return 2;
     }
-    if (o.output.empty() && o.partial.empty()) {
-        std::fprintf(stderr, "glint: give -o (a PNG, or a folder for several scenes) or --partial\n");
+    if (o.output.empty() && o.exr.empty() && o.partial.empty()) {
+        std::fprintf(stderr, "glint: give -o (a PNG, or a folder for several scenes), --exr or --partial\n");
         return 2;
     }
     if (batch) return render_batch(o, pool);
-    return render_scene(o, o.scenes.front(), Outputs{o.output, o.hdr, o.partial, o.checkpoint}, pool);
+    return render_scene(o, o.scenes.front(), Outputs{o.output, o.hdr, o.exr, o.partial, o.checkpoint}, pool);
 }
 
 }  // namespace
@@ -226,6 +232,10 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("scenes", o->scenes, "Scene JSON files, or folders of them")->required();
     cmd->add_option("-o,--output", o->output, "PNG file to write (a folder when rendering several scenes)");
     cmd->add_option("--hdr", o->hdr, "Also write the linear image as PFM (a folder for several scenes)");
+    cmd->add_option("--exr", o->exr,
+                    "Also write an OpenEXR file: the linear image, sample counts, variance and AOVs (a folder for "
+                    "several scenes; turns on --aovs)");
+    cmd->add_flag("--aovs", o->aovs, "Keep the AOVs (albedo, normal, depth) in the film and its partial files (film.aovs)");
     cmd->add_option("--samples", o->samples, "Render only samples A..B-1 of every pixel (A:B), for --partial");
     cmd->add_option("--partial", o->partial, "Write the per-pixel sums to this file, for glint merge");
     cmd->add_option("--scenes", o->meshes, "Folder the scene's mesh files are read from (default: the scene file's)");

@@ -286,7 +286,7 @@ void HttpApi::install_job_routes(httplib::Server& server) {
     });
 }
 
-// A job's latest frame: PNG, PFM, and a thumbnail for lists of jobs.
+// A job's latest frame: PNG, PFM, EXR (with the film's layers), and a thumbnail for lists of jobs.
 void HttpApi::install_image_routes(httplib::Server& server) {
     using Req = httplib::Request;
     using Res = httplib::Response;
@@ -305,6 +305,16 @@ void HttpApi::install_image_routes(httplib::Server& server) {
         if (!s.image) return send_error(res, 409, "no pass has finished yet");
         const std::vector<uint8_t> pfm = encode_pfm(*s.image);
         res.set_content(reinterpret_cast<const char*>(pfm.data()), pfm.size(), "image/x-portable-floatmap");
+    });
+    server.Get(job + "/image.exr", [this](const Req& req, Res& res) {
+        auto j = job_or_404(req, res);
+        if (!j) return;
+        const JobSnapshot s = j->snapshot();
+        if (!s.image) return send_error(res, 409, "no pass has finished yet");
+        std::vector<ExrLayer> layers{exr_layer("", *s.image)};
+        if (s.layers) layers.insert(layers.end(), s.layers->begin(), s.layers->end());
+        const std::vector<uint8_t> exr = encode_exr(s.image->width, s.image->height, layers);
+        res.set_content(reinterpret_cast<const char*>(exr.data()), exr.size(), "image/x-exr");
     });
     server.Get(job + "/thumbnail.png", [this](const Req& req, Res& res) {
         auto j = job_or_404(req, res);

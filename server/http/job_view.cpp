@@ -26,6 +26,7 @@ nlohmann::json job_status(const Job& job) {
          {{"self", self},
           {"png", self + "/image.png"},
           {"pfm", self + "/image.pfm"},
+          {"exr", self + "/image.exr"},
           {"stream", self + "/stream"},
           {"events", self + "/events"},
           {"thumbnail", self + "/thumbnail.png"}}},

@@ -90,15 +90,19 @@ void Job::save_final(JobState state, const Progress& progress) const {
 }
 
 void Job::publish(JobState state, const Progress& progress) {
-    publish_frame(render_.film().mean(), state, progress, false);
+    publish_frame(render_.film().mean(), film_layers(render_.film()), state, progress, false);
 }
 
 // Only the render thread publishes, so the progress read here is still the job's when written.
-void Job::publish_preview(const Image& preview) { publish_frame(preview, JobState::running, snapshot().progress, true); }
+void Job::publish_preview(const Image& preview) {
+    publish_frame(preview, {}, JobState::running, snapshot().progress, true);
+}
 
-void Job::publish_frame(Image frame, JobState state, const Progress& progress, bool preview) {
+void Job::publish_frame(Image frame, std::vector<ExrLayer> layers, JobState state, const Progress& progress,
+                        bool preview) {
     // Encode outside the lock: watchers only ever wait for the pointer swap.
     auto image = std::make_shared<const Image>(std::move(frame));
+    auto exr_layers = layers.empty() ? nullptr : std::make_shared<const std::vector<ExrLayer>>(std::move(layers));
     auto png = std::make_shared<const std::vector<uint8_t>>(encode_png(*image, render_.settings().encoding));
     {
         std::lock_guard lock(mutex_);
@@ -107,6 +111,7 @@ void Job::publish_frame(Image frame, JobState state, const Progress& progress, b
         snapshot_.progress = progress;
         snapshot_.png = std::move(png);
         snapshot_.image = std::move(image);
+        snapshot_.layers = std::move(exr_layers);
         snapshot_.preview = preview;
     }
     changed_.notify_all();
@@ -200,7 +205,7 @@ bool Job::merge_parts(std::vector<PartFilm>& parts) {
     // Every part done: the ranges tile the job, and merge_partials adds them in the order glint
     // merge does, to the whole render's bytes. Before, a preview: the parts' sums so far, added
     // to an empty film (adding to zero is exact) without copying the parts.
-    Film merged(render_.film().width(), render_.film().height());
+    Film merged(render_.film().width(), render_.film().height(), render_.settings().aovs);
     if (all_done) {
         std::vector<Partial> films;
         for (PartFilm& part : parts) films.push_back(std::move(*part.film));

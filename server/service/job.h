@@ -10,6 +10,7 @@
 #include <mutex>
 #include <string>
 
+#include "io/exr_file.h"
 #include "io/partial_file.h"
 #include "io/scene_loader.h"
 #include "render/renderer.h"
@@ -25,6 +26,9 @@ struct JobSnapshot {
     Progress progress;
     std::shared_ptr<const std::vector<uint8_t>> png;  // null until the first pass
     std::shared_ptr<const Image> image;               // the linear mean image of that frame
+    // The film's other EXR layers at that frame (io/exr_file.h: sample counts, variance, AOVs);
+    // null for a preview, which has none.
+    std::shared_ptr<const std::vector<ExrLayer>> layers;
     std::string error;                                // why a failed job failed
     std::optional<PartCounts> parts;                  // a farm job's parts, once submitted
     std::optional<StopReason> stop;                   // why it ended (not set for a failed job)
@@ -93,7 +97,8 @@ private:
     void publish(JobState state, const Progress& progress);
     // Publishes `image` as a frame without touching the film (the first preview).
     void publish_preview(const Image& image);
-    void publish_frame(Image frame, JobState state, const Progress& progress, bool preview);
+    void publish_frame(Image frame, std::vector<ExrLayer> layers, JobState state, const Progress& progress,
+                       bool preview);
     void set_stop(StopReason reason);
     // The job's state.json as it would be in `state`; record_locked() with mutex_ held.
     JobRecord record(JobState state, const std::string& error, const Progress& progress) const;

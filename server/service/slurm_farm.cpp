@@ -109,6 +109,7 @@ std::vector<std::string> SlurmFarm::part_command(const std::filesystem::path& fo
         "--seed", std::to_string(settings.seed), "--encoding", settings.encoding == Encoding::srgb ? "srgb" : "gamma2.2",
         "--checkpoint-interval", std::to_string(config_.checkpoint_interval)};
     options.insert(options.end(), film.begin(), film.end());
+    if (settings.aovs) options.push_back("--aovs");
     options.insert(options.begin(), scene.string());
     return options;
 }

@@ -21,6 +21,11 @@ check "render writes a PNG" cmp -s -n 8 "$work/out.png" <(printf '\x89PNG\r\n\x1
 check "render writes a 10x6 PFM" grep -qa "^10 6$" "$work/out.pfm"
 check "render reports time, samples/s and error" grep -q "completed; 4 spp at 10x6 in .* samples/s, estimated RMSE .*, 0 samples dropped (rounds with a non-finite one)" "$work/stdout"
 check "render prints progress lines off a terminal" grep -q "^progress 100%" "$work/stderr"
+exr_magic() { cmp -s -n 4 "$1" <(printf '\x76\x2f\x31\x01'); }
+"$glint" render "$work/tiny.json" --exr "$work/out.exr" > "$work/stdout" 2> /dev/null
+check "render --exr alone exits 0" test $? -eq 0
+check "render --exr writes an OpenEXR file" exr_magic "$work/out.exr"
+check "render --exr names its file in the report" grep -q "^$work/out.exr: completed" "$work/stdout"
 
 sed 's/"radius": 1/"radius": -1/' "$work/tiny.json" > "$work/bad.json"
 "$glint" render "$work/bad.json" -o "$work/bad.png" 2> "$work/stderr"
@@ -83,9 +88,10 @@ check "a missing scene file exits 1" grep -q "cannot open" "$work/stderr"
 mkdir -p "$work/batch"
 cp "$work/tiny.json" "$work/batch/a.json"
 sed 's/"spp": 4/"spp": 8/' "$work/tiny.json" > "$work/batch/b.json"
-"$glint" render "$work/batch" "$work/bad.json" -o "$work/out" --hdr "$work/hdr" > "$work/stdout" 2> "$work/stderr"
+"$glint" render "$work/batch" "$work/bad.json" -o "$work/out" --hdr "$work/hdr" --exr "$work/exr" > "$work/stdout" 2> "$work/stderr"
 check "a batch with a bad scene exits 1" test $? -eq 1
 check "a batch renders the good scenes" test -s "$work/out/a.png" -a -s "$work/out/b.png" -a -s "$work/hdr/b.pfm"
+check "a batch writes an EXR per scene into the --exr folder" exr_magic "$work/exr/a.exr"
 check "a batch ends with a summary" grep -q "^3 scenes: 2 rendered, 1 failed$" "$work/stdout"
 check "a batch prints one line per scene" test "$(grep -c "completed;" "$work/stdout")" -eq 2
 
@@ -103,6 +109,11 @@ check "the merged PNG equals the whole render's" cmp -s "$work/merged.png" "$wor
 check "the merged PFM equals the whole render's" cmp -s "$work/merged.pfm" "$work/whole.pfm"
 "$glint" merge "$work/gap.png" "$work/part-0:12" "$work/part-24:40" 2> "$work/stderr"
 check "merge refuses a gap" grep -q "samples \[12, 24) are missing" "$work/stderr"
+"$glint" merge "$work/merged.png" --exr "$work/merged.exr" "$work"/part-* > /dev/null
+check "merge --exr writes an OpenEXR file" exr_magic "$work/merged.exr"
+"$glint" render "$work/tiny.json" --samples 12:24 --aovs --partial "$work/aovs-12:24" > /dev/null 2>&1
+"$glint" merge "$work/mixed.png" "$work/part-0:12" "$work/aovs-12:24" "$work/part-24:40" 2> "$work/stderr"
+check "merge refuses a part with AOVs among parts without" grep -q "part \[12, 24) is from another scene or settings" "$work/stderr"
 for parts in 1 2 3 5 7 10; do
   covered=0 ok=1
   for i in $(seq 0 $((parts - 1))); do
@@ -138,6 +149,9 @@ check "the continued render's partial equals the uninterrupted one's" cmp -s "$w
 check "a completed render removes its checkpoint" test ! -e "$work/ck"
 "$glint" "${cornell[@]}" --partial "$work/x.partial" --checkpoint "$work/continued.partial" --seed 9 > /dev/null 2> "$work/stderr"
 check "a checkpoint of other settings is refused, naming it" \
+  grep -q "continued.partial cannot be continued: it is from another scene or settings" "$work/stderr"
+"$glint" "${cornell[@]}" --partial "$work/x.partial" --checkpoint "$work/continued.partial" --aovs > /dev/null 2> "$work/stderr"
+check "a checkpoint without AOVs does not continue a render with them" \
   grep -q "continued.partial cannot be continued: it is from another scene or settings" "$work/stderr"
 
 # glint asks glibc for transparent huge pages by running itself again with GLIBC_TUNABLES set

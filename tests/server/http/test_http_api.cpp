@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "http/job_view.h"
+#include "io/exr_file.h"
 #include "support/http_server_fixture.h"
 #include "support/raw_http.h"
 #include "support/test_support.h"
@@ -65,6 +66,30 @@ TEST_F(Server, JobLifecycleAndImages) {
     EXPECT_TRUE(listed);
 }
 
+// The EXR of a job with AOVs: OpenEXR's magic, its content type, and the bytes `glint render
+// --exr` writes for the same render (the film's layers as the last frame published them).
+TEST_F(Server, ImageExrIsTheFilmWithItsLayers) {
+    const json accepted =
+        post("/jobs", R"({"preset": "cornell", "width": 40, "height": 30, "spp": 16, "aovs": true})", 202);
+    const std::string id = accepted["id"];
+    EXPECT_EQ(accepted["urls"]["exr"], "/jobs/" + id + "/image.exr");
+    EXPECT_EQ(wait_until_final(id)["state"], "done");
+    auto exr = client_->Get(("/jobs/" + id + "/image.exr").c_str());
+    ASSERT_TRUE(exr);
+    EXPECT_EQ(exr->status, 200);
+    EXPECT_EQ(exr->get_header_value("Content-Type"), "image/x-exr");
+    EXPECT_EQ(exr->body.substr(0, 4), std::string("\x76\x2f\x31\x01", 4));
+    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    s.settings.width = 40;
+    s.settings.height = 30;
+    s.settings.spp = 16;
+    s.settings.aovs = true;
+    const auto job = testing::render(s);
+    const std::vector<uint8_t> expected = encode_film_exr(job->film().mean(), job->film());
+    EXPECT_EQ(exr->body, std::string(expected.begin(), expected.end()));
+    EXPECT_EQ(get_json("/jobs/0123456789abcdef/image.exr", 404)["error"], "no job 0123456789abcdef");
+}
+
 TEST_F(Server, BadInputGetsAStatusAndAJsonBody) {
     EXPECT_TRUE(post("/jobs", R"({"preset": )", 400)["error"].get<std::string>().starts_with("malformed JSON"));
     const json invalid = post("/jobs", R"({"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]})", 422);
@@ -104,6 +129,7 @@ TEST_F(Server, AFullQueueGets429WithRetryAfter) {
     EXPECT_EQ(json::parse(res->body)["error"], "too many queued jobs (limit 1)");
     // The jobs in flight are untouched by the refusal; cancelling them works.
     EXPECT_EQ(get_json("/jobs/" + first)["state"], "running");
+    EXPECT_EQ(client_->Get(("/jobs/" + second + "/image.exr").c_str())->status, 409);  // no frame yet
     EXPECT_EQ(client_->Delete(("/jobs/" + second).c_str())->status, 200);
     EXPECT_EQ(client_->Delete(("/jobs/" + first).c_str())->status, 200);
     EXPECT_EQ(wait_until_final(first)["state"], "cancelled");
