@@ -14,8 +14,8 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "partial files are little-endian");
 constexpr char kMagic[8] = {'G', 'L', 'N', 'T', 'P', 'A', 'R', 'T'};
-constexpr uint32_t kVersion = 4;
-constexpr size_t kHeader = 44, kPixel = 128, kTrailer = 8;
+constexpr uint32_t kVersion = 5;
+constexpr size_t kHeader = 52, kPixel = 128, kTrailer = 8;
 
 class Writer {
 public:
@@ -55,11 +55,13 @@ uint64_t checksum(const uint8_t* data, size_t size) {
 // read without halves, so the image is the same and the error estimate unknown (infinite), and
 // such a film can be shown but not resumed or merged with a newer one: nothing an older glint
 // rendered is lost by an upgrade.
-constexpr uint32_t kPerSampleVersion = 2, kRoundVersion = 3, kOldSamplerVersion = 1;
-constexpr size_t kOldHeader = 40, kPerSamplePixel = 120;
+// Version 4 is version 5 without the light paths (Film::light_paths), which only adaptive
+// sampling counts: read as 0.
+constexpr uint32_t kPerSampleVersion = 2, kRoundVersion = 3, kHalvesVersion = 4, kOldSamplerVersion = 1;
+constexpr size_t kOldHeader = 40, kHalvesHeader = 44, kPerSamplePixel = 120;
 
 size_t pixel_size(uint32_t version) {
-    if (version == kVersion || version == kRoundVersion) return kPixel;
+    if (version == kVersion || version == kHalvesVersion || version == kRoundVersion) return kPixel;
     if (version == kPerSampleVersion) return kPerSamplePixel;
     throw PartialError("unsupported partial file version " + std::to_string(version));
 }
@@ -92,6 +94,7 @@ std::vector<uint8_t> encode_partial(const Partial& p) {
     w.put(uint32_t(p.encoding == Encoding::srgb ? 1 : 0));
     w.put(p.sampler_version);
     w.put(p.fingerprint);
+    w.put(p.film.light_paths());
     for (const PixelSums& px : p.film.pixels()) {
         for (int c = 0; c < 3; ++c) w.put(px.sum[c]);
         for (int c = 0; c < 3; ++c) w.put(px.half_sum[c]);
@@ -118,7 +121,9 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
     Reader r(bytes);
     r.get<uint64_t>();  // magic
     const auto version = r.get<uint32_t>();
-    const size_t pixel_bytes = pixel_size(version), header = version == kVersion ? kHeader : kOldHeader;
+    const bool halves = version == kVersion || version == kHalvesVersion;
+    const size_t pixel_bytes = pixel_size(version),
+                 header = version == kVersion ? kHeader : halves ? kHalvesHeader : kOldHeader;
     if (bytes.size() < header + kTrailer) throw PartialError("size does not match the header");
     const auto width = r.get<uint32_t>(), height = r.get<uint32_t>();
     // Divides rather than multiplies: 64·W·H overflows 64 bits for W = H = 2^31.
@@ -133,16 +138,17 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
     const auto encoding = r.get<uint32_t>();
     if (encoding > 1) throw PartialError("unknown PNG encoding " + std::to_string(encoding) + " (0 gamma 2.2, 1 sRGB)");
     p.encoding = encoding == 1 ? Encoding::srgb : Encoding::gamma22;
-    p.sampler_version = version == kVersion ? r.get<uint32_t>() : kOldSamplerVersion;
+    p.sampler_version = halves ? r.get<uint32_t>() : kOldSamplerVersion;
     p.fingerprint = r.get<uint64_t>();
     p.film = Film(int(width), int(height));
+    if (version == kVersion) p.film.set_light_paths(r.get<uint64_t>());
     for (PixelSums& px : p.film.pixels()) {
         for (int c = 0; c < 3; ++c) px.sum[c] = r.get<double>();
         Rgb second;  // the first half's sums; in older versions, sums of squares
         for (int c = 0; c < 3; ++c) second[c] = r.get<double>();
         px.count = r.get<uint64_t>();
         const uint64_t fourth = version == kPerSampleVersion ? 0 : r.get<uint64_t>();  // half's or rounds' count
-        if (version == kVersion) {
+        if (halves) {
             px.half_sum = second;
             px.half_count = fourth;
         }

@@ -1,11 +1,11 @@
 // Partial renders: the per-pixel sums of samples [first, end) of a job, written by
 // `glint render --samples A:B --partial FILE` and combined by `glint merge`.
 //
-// Format (version 4, little-endian, no padding; versions 2 and 3 are still read, see
+// Format (version 5, little-endian, no padding; versions 2 to 4 are still read, see
 // partial_file.cpp):
 //   offset  size  field
 //   0       8     magic "GLNTPART"
-//   8       4     uint32 version = 4
+//   8       4     uint32 version = 5
 //   12      4     uint32 width
 //   16      4     uint32 height
 //   20      4     uint32 first sample (inclusive)
@@ -13,7 +13,9 @@
 //   28      4     uint32 PNG encoding (0 gamma 2.2, 1 sRGB)
 //   32      4     uint32 sampler version (kSamplerVersion, sampler.h)
 //   36      8     uint64 fingerprint of scene and settings (core/io/fingerprint.h)
-//   44      128·W·H per pixel, rows top to bottom: float64 sum r, g, b; float64 sum of the first
+//   44      8     uint64 light paths traced per pixel, when counted apart from the camera
+//                 samples (adaptive sampling with light tracing, Film::light_paths); else 0
+//   52      128·W·H per pixel, rows top to bottom: float64 sum r, g, b; float64 sum of the first
 //                 half's samples r, g, b; uint64 sample count; uint64 first half's sample count;
 //                 uint64 dropped samples; int64 light-tracing splat sums r, g, b and sums of
 //                 squares r, g, b (fixed point, see film.h); uint64 dropped splats

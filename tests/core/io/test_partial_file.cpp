@@ -153,9 +153,9 @@ TEST(Partial, ReadsVersionsTwoAndThreeWithoutHalves) {
         EXPECT_EQ(p.sampler_version, 1u);
         EXPECT_TRUE(std::isinf(p.film.error_estimate()));
     }
-    std::vector<uint8_t> v5 = old_version_file(3);
-    put(v5, 8, uint32_t(5));
-    EXPECT_EQ(decode_error(with_checksum(v5)), "unsupported partial file version 5");
+    std::vector<uint8_t> v6 = old_version_file(3);
+    put(v6, 8, uint32_t(6));
+    EXPECT_EQ(decode_error(with_checksum(v6)), "unsupported partial file version 6");
 }
 
 TEST(Partial, PartsOfAnotherSamplerVersionDoNotMerge) {

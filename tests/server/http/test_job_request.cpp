@@ -45,5 +45,19 @@ TEST(JobRequest, EveryMalformedBodyNamesItsByte) {
               "malformed: malformed JSON at byte 34: number overflow parsing '1e999'");
 }
 
+TEST(JobRequest, AdaptiveIsAnObjectWithThresholdAndMinSpp) {
+    EXPECT_EQ(outcome_of(R"({"preset": "cornell", "spp": 4, "adaptive": {"threshold": 0.02, "min_spp": 16}})"), "ok");
+    EXPECT_EQ(outcome_of(R"({"preset": "cornell", "adaptive": 0.02})"),
+              R"(other: adaptive: must be an object {"threshold": T, "min_spp": N})");
+    EXPECT_EQ(outcome_of(R"({"preset": "cornell", "adaptive": {"threshold": "low"}})"),
+              "other: adaptive.threshold: must be a number");
+    EXPECT_EQ(outcome_of(R"({"preset": "cornell", "adaptive": {"threshold": 3}})"),
+              "other: adaptive.threshold: must be a number in [0, 1] (0: off)");
+    EXPECT_EQ(outcome_of(R"({"preset": "cornell", "adaptive": {"min_spp": 1.5}})"),
+              "other: adaptive.min_spp: must be an integer in [0, 65536] (0: automatic)");
+    EXPECT_EQ(outcome_of(R"({"preset": "cornell", "adaptive": {"every": 16}})"),
+              "other: adaptive.every: unknown field (expected one of: threshold, min_spp)");
+}
+
 }  // namespace
 }  // namespace glint
