@@ -225,7 +225,7 @@ StopReason RenderJob::run(ThreadPool& pool, const std::function<void(const Progr
     start_ = Clock::now();
     if (on_preview && spp_done_ == 0) on_preview(preview(pool));
     spp_at_start_ = spp_done_;
-    mean_spp_at_start_ = adaptive_ ? film_.camera_samples_per_pixel() : double(spp_done_);
+    mean_spp_at_start_ = adaptive_ ? film_.camera_samples_per_pixel() : double(spp_at_start_);
     if (settings_.time_limit > 0)
         deadline_ = start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(settings_.time_limit));
     uint32_t pass = adaptive_ ? std::min(pass_to_check(), settings_.spp - spp_done_) : samples_per_round(settings_.filter);
