@@ -70,7 +70,6 @@ def main(path):
     fig.tight_layout()
     Path("bench/plots").mkdir(parents=True, exist_ok=True)
     fig.savefig("bench/plots/adaptive.svg")
-    fig.savefig("bench/plots/adaptive.png", dpi=80)
     table = ["| scene | threshold (max spp) | RMSE reached (by pairs) | CPU s, plain | CPU s, adaptive | mean spp | "
              "plain / adaptive |",
              "|---|---|---|---|---|---|---|"]
