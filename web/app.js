@@ -9,12 +9,13 @@ const ui = {
   spp: $("spp"), sppLabel: $("spp-label"), timeLimit: $("time-limit"), targetError: $("target-error"),
   priority: $("priority"), render: $("render"), cancel: $("cancel"),
   image: $("image"), viewport: $("viewport"), regionMode: $("region-mode"), regionBox: $("region-box"),
+  samplesView: $("samples-view"),
   plot: $("error-plot"), png: $("download-png"), pfm: $("download-pfm"),
   jobList: $("job-list"), jobCount: $("job-count"), jobsError: $("jobs-error"),
 };
 const figures = {
   job: $("fig-job"), image: $("fig-image"), state: $("fig-state"), stop: $("fig-stop"), spp: $("fig-spp"),
-  time: $("fig-time"), eta: $("fig-eta"), rate: $("fig-rate"), error: $("fig-error"),
+  time: $("fig-time"), eta: $("fig-eta"), rate: $("fig-rate"), error: $("fig-error"), active: $("fig-active"),
 };
 
 // The SPP slider is logarithmic in smallpt's units: k samples for each of the 4 subpixels,
@@ -32,6 +33,7 @@ function showSpp() {
 let shown = null;      // {id, status, events}
 let errorHistory = []; // [seconds, error] for the plot
 let zoom = 1;
+let samplesView = false;  // an adaptive job's samples.png in place of its image
 
 const isLive = (s) => s.state === "queued" || s.state === "running";
 
@@ -148,8 +150,22 @@ function watch(status) {
 
 // The job's last frame as a plain PNG (also when the stream was cut short); none before the first.
 function showFinalImage(status) {
-  if (status.frame > 0) ui.image.src = withToken(`${status.urls.png}?final=${status.frame}`);
+  if (samplesView && status.urls.samples && status.frame > 0) showSamples(status);
+  else if (status.frame > 0) ui.image.src = withToken(`${status.urls.png}?final=${status.frame}`);
   else ui.image.removeAttribute("src");
+}
+
+// The samples per pixel of the frame shown: a still image, fetched again at each new frame.
+function showSamples(status) {
+  ui.image.src = withToken(`${status.urls.samples}?frame=${status.frame}`);
+}
+
+function toggleSamplesView() {
+  samplesView = !samplesView;
+  ui.samplesView.setAttribute("aria-pressed", String(samplesView));
+  if (!shown) return;
+  if (shown.events && !samplesView) ui.image.src = withToken(shown.status.urls.stream);
+  else showFinalImage(shown.status);
 }
 
 // The shown job ended (status) or its events were cut (null). `events` tells a late event of a
@@ -213,7 +229,12 @@ function imageText(s) {
 }
 
 function showFigures(s) {
-  if (shown?.id === s.id) shown.status = s;
+  const frameBefore = shown?.status?.frame;
+  if (shown?.id === s.id) shown.status = { ...shown.status, ...s };
+  const samples = Boolean(shown?.status?.urls?.samples);
+  ui.samplesView.disabled = !samples;
+  if (samplesView && samples && s.frame > 0 && s.frame !== frameBefore) showSamples(shown.status);
+  figures.active.textContent = s.pixels > 0 ? `${(100 * s.active_pixels / s.pixels).toFixed(0)} %` : "–";
   figures.job.textContent = s.id;
   figures.image.textContent = imageText(s);
   figures.state.textContent = s.state;
@@ -236,6 +257,7 @@ ui.render.addEventListener("click", startRender);
 ui.cancel.addEventListener("click", cancelRender);
 ui.image.addEventListener("load", applyZoom);
 ui.regionMode.addEventListener("click", toggleRegionMode);
+ui.samplesView.addEventListener("click", toggleSamplesView);
 for (const b of document.querySelectorAll("button.zoom")) b.addEventListener("click", () => setZoom(Number(b.dataset.zoom)));
 document.addEventListener("visibilitychange", () => { if (!document.hidden) pollJobs(); });
 enableDragging();

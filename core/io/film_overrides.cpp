@@ -14,6 +14,14 @@ void check_stop_condition(const char* path, double value) {
     if (!(value >= 0) || !std::isfinite(value)) throw SceneError(path, "must be a finite number >= 0 (0: off)");
 }
 
+void check_adaptive(const AdaptiveSettings& a, const SceneLimits& limits) {
+    if (!(a.threshold >= 0 && a.threshold <= kMaxAdaptiveThreshold))
+        throw SceneError("film.adaptive.threshold", "must be a number in [0, 1] (0: off)");
+    if (!adaptive_min_spp_range(limits).contains(a.min_spp))
+        throw SceneError("film.adaptive.min_spp",
+                         "must be an integer in " + adaptive_min_spp_range(limits).text() + " (0: automatic)");
+}
+
 void check_region(const RenderSettings& s) {
     if (s.whole_image()) return;
     const Region& r = s.region;
@@ -45,6 +53,8 @@ IntegerRange film_range(FilmInteger field, const SceneLimits& limits) {
     return {};
 }
 
+IntegerRange adaptive_min_spp_range(const SceneLimits& limits) { return {0, limits.max_spp}; }
+
 const char* film_key(FilmInteger field) {
     static constexpr const char* kKeys[] = {"width", "height", "spp", "seed"};  // enum order
     return kKeys[size_t(field)];
@@ -55,6 +65,7 @@ Encoding encoding_named(const std::string& name) {
 }
 
 void apply_film_overrides(const FilmOverrides& o, RenderSettings& s, const SceneLimits& limits) {
+    if (o.first_sample) s.adaptive.job_spp = o.job_spp.value_or(s.spp);  // before spp becomes the part's
     if (o.spp) s.spp = *o.spp;
     if (o.width) s.width = *o.width;
     if (o.height) s.height = *o.height;
@@ -65,6 +76,8 @@ void apply_film_overrides(const FilmOverrides& o, RenderSettings& s, const Scene
     if (o.time_limit) s.time_limit = *o.time_limit;
     if (o.region) s.region = *o.region;
     if (o.aovs) s.aovs = *o.aovs;
+    if (o.adaptive_threshold) s.adaptive.threshold = *o.adaptive_threshold;
+    if (o.adaptive_min_spp) s.adaptive.min_spp = *o.adaptive_min_spp;
     check_settings(s, limits);
 }
 
@@ -84,6 +97,7 @@ void check_settings(const RenderSettings& s, const SceneLimits& limits) {
                                           " (the tent filter renders whole rounds of 4 subpixels)");
     check_stop_condition("film.target_error", s.target_error);
     check_stop_condition("film.time_limit", s.time_limit);
+    check_adaptive(s.adaptive, limits);
     check_region(s);
 }
 

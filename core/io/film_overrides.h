@@ -27,6 +27,10 @@ IntegerRange film_range(FilmInteger field, const SceneLimits& limits);
 // The name of `field` in a scene's "film" object and in a preset request.
 const char* film_key(FilmInteger field);
 
+// film.adaptive: the threshold's range ([0, 1], 0: off) and min_spp's ([0, max_spp], 0: automatic).
+constexpr double kMaxAdaptiveThreshold = 1;
+IntegerRange adaptive_min_spp_range(const SceneLimits& limits);
+
 // "srgb" or "gamma2.2", the names film.encoding and --encoding accept (checked by their parsers).
 Encoding encoding_named(const std::string& name);
 
@@ -40,6 +44,10 @@ struct FilmOverrides {
     std::optional<double> target_error, time_limit;
     std::optional<Region> region;
     std::optional<bool> aovs;
+    std::optional<double> adaptive_threshold;
+    std::optional<uint32_t> adaptive_min_spp;
+    // With first_sample (a part of a job): the whole job's spp; unset, the scene's film.spp.
+    std::optional<uint32_t> job_spp;
 };
 
 // Applies the overrides to `settings`, then checks the result with check_settings().

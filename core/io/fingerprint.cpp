@@ -38,6 +38,12 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
     if (settings.aovs) h.value(settings.aovs);  // so that films without AOVs keep their fingerprints
     if (!settings.whole_image())  // so that films of whole renders keep their fingerprints
         for (int v : {settings.region.x0, settings.region.y0, settings.region.x1, settings.region.y1}) h.value(v);
+    // Which pixels get samples, so the sums; left out when off, as region is when whole.
+    if (settings.adaptive.on()) {
+        h.value(settings.adaptive.threshold);
+        h.value(settings.adaptive.min_spp);
+        h.value(settings.adaptive.job_spp);
+    }
     return h.digest();
 }
 

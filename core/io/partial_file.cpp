@@ -15,7 +15,7 @@ namespace {
 static_assert(std::endian::native == std::endian::little, "partial files are little-endian");
 constexpr char kMagic[8] = {'G', 'L', 'N', 'T', 'P', 'A', 'R', 'T'};
 constexpr uint32_t kVersion = 5;
-constexpr size_t kHeader = 48, kPixel = 128, kAovPixel = 112, kTrailer = 8;
+constexpr size_t kHeader = 56, kPixel = 128, kAovPixel = 112, kTrailer = 8;
 constexpr uint32_t kHasAovs = 1;
 
 class Writer {
@@ -55,7 +55,8 @@ uint64_t checksum(const uint8_t* data, size_t size) {
 // its round count (version 3, 128 bytes), and no sampler version (a 40-byte header). They are
 // read without halves, so the image is the same and the error estimate unknown (infinite), and
 // such a film can be shown but not resumed or merged with a newer one: nothing an older glint
-// rendered is lost by an upgrade. Version 4 is version 5 without the flags (so without AOVs).
+// rendered is lost by an upgrade. Version 4 is version 5 without the flags (so without AOVs)
+// and without the light paths (Film::light_paths, which only adaptive sampling counts: read as 0).
 constexpr uint32_t kPerSampleVersion = 2, kRoundVersion = 3, kHalvesVersion = 4, kOldSamplerVersion = 1;
 constexpr size_t kOldHeader = 40, kHalvesHeader = 44, kPerSamplePixel = 120;
 
@@ -149,6 +150,7 @@ std::vector<uint8_t> encode_partial(const Partial& p) {
     w.put(p.sampler_version);
     w.put(p.fingerprint);
     w.put(aovs ? kHasAovs : 0u);
+    w.put(p.film.light_paths());
     for (const PixelSums& px : p.film.pixels()) put_pixel(w, px);
     for (const AovSums& a : p.film.aovs()) {
         put_aov(w, a.sum);
@@ -186,10 +188,12 @@ Partial decode_partial(const std::vector<uint8_t>& bytes) {
     p.sampler_version = version >= kHalvesVersion ? r.get<uint32_t>() : kOldSamplerVersion;
     p.fingerprint = r.get<uint64_t>();
     const uint32_t flags = version == kVersion ? r.get<uint32_t>() : 0;
+    const uint64_t light_paths = version == kVersion ? r.get<uint64_t>() : 0;
     if ((flags & ~kHasAovs) != 0) throw PartialError("unknown flags " + std::to_string(flags));
     if (flags & kHasAovs) pixel_bytes += kAovPixel;
     check_size(bytes.size(), header, pixel_bytes, width, height);
     p.film = Film(int(width), int(height), (flags & kHasAovs) != 0);
+    p.film.set_light_paths(light_paths);
     for (PixelSums& px : p.film.pixels()) get_pixel(r, version, px);
     for (AovSums& a : p.film.aovs()) {
         a.sum = get_aov(r);

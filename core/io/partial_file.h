@@ -14,7 +14,9 @@
 //   32      4     uint32 sampler version (kSamplerVersion, sampler.h)
 //   36      8     uint64 fingerprint of scene and settings (core/io/fingerprint.h)
 //   44      4     uint32 flags: bit 0 set if the film has AOVs (render/aov.h); no other bits
-//   48      128·W·H per pixel, rows top to bottom: float64 sum r, g, b; float64 sum of the first
+//   48      8     uint64 light paths traced per pixel, when counted apart from the camera
+//                 samples (adaptive sampling with light tracing, Film::light_paths); else 0
+//   56      128·W·H per pixel, rows top to bottom: float64 sum r, g, b; float64 sum of the first
 //                 half's samples r, g, b; uint64 sample count; uint64 first half's sample count;
 //                 uint64 dropped samples; int64 light-tracing splat sums r, g, b and sums of
 //                 squares r, g, b (fixed point, see film.h); uint64 dropped splats

@@ -155,7 +155,7 @@ private:
 
     RenderSettings parse_film(const At& at, Rgb& background) const {
         at.expect_object({"width", "height", "spp", "filter", "sampler", "background", "encoding", "seed", "time_limit",
-                          "target_error", "region", "aovs"});
+                          "target_error", "region", "aovs", "adaptive"});
         RenderSettings s;
         if (at.has("width")) s.width = int(film_integer(at, FilmInteger::width));
         if (at.has("height")) s.height = int(film_integer(at, FilmInteger::height));
@@ -172,7 +172,18 @@ private:
         if (at.has("target_error")) s.target_error = at["target_error"].number();
         if (at.has("region")) s.region = region(at["region"]);
         if (at.has("aovs")) s.aovs = at["aovs"].boolean();
+        if (at.has("adaptive")) s.adaptive = adaptive(at["adaptive"]);
         return s;
+    }
+
+    // {"threshold": T, "min_spp": N}; check_settings() bounds the threshold.
+    AdaptiveSettings adaptive(const At& at) const {
+        at.expect_object({"threshold", "min_spp"});
+        AdaptiveSettings a;
+        if (at.has("threshold")) a.threshold = at["threshold"].number();
+        const IntegerRange range = adaptive_min_spp_range(limits_);
+        if (at.has("min_spp")) a.min_spp = uint32_t(at["min_spp"].integer(range.min, range.max));
+        return a;
     }
 
     // [x0, y0, x1, y1]: pixels, rows from the top; check_region() checks it against the size.

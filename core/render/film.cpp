@@ -66,6 +66,10 @@ void Film::splat(int x, int y, const Rgb& value) {
 }
 
 double Film::samples_per_pixel() const {
+    return light_paths_ > 0 ? double(light_paths_) : camera_samples_per_pixel();
+}
+
+double Film::camera_samples_per_pixel() const {
     uint64_t samples = 0;
     for (const PixelSums& px : pixels_) samples += px.count + px.dropped;
     return double(samples) / double(pixels_.size());
@@ -137,6 +141,7 @@ void Film::merge(const Film& other) {
             add(aovs_[i].sum, other.aovs_[i].sum);
             add(aovs_[i].half_sum, other.aovs_[i].half_sum);
         }
+    light_paths_ += other.light_paths_;
 }
 
 uint64_t Film::dropped() const {

@@ -90,8 +90,14 @@ public:
     // samples_per_pixel().
     Rgb splat_mean(const PixelSums& px, double samples_per_pixel) const;
     double splat_variance(const PixelSums& px, int c, double samples_per_pixel) const;
-    // Camera samples taken per pixel on average: light paths traced per pixel.
+    // Light paths traced per pixel: the camera samples taken per pixel on average, or, once set,
+    // light_paths() (adaptive sampling stops a pixel's camera samples, not its light paths).
     double samples_per_pixel() const;
+    // Camera samples taken per pixel on average (dropped ones included).
+    double camera_samples_per_pixel() const;
+    // Light paths traced per pixel when counted apart from the camera samples; 0: not counted.
+    uint64_t light_paths() const { return light_paths_; }
+    void set_light_paths(uint64_t per_pixel) { light_paths_ = per_pixel; }
 
     const PixelSums& pixel(int x, int y) const { return pixels_[size_t(y) * width_ + x]; }
     std::vector<PixelSums>& pixels() { return pixels_; }
@@ -100,8 +106,9 @@ public:
     std::vector<AovSums>& aovs() { return aovs_; }
     const std::vector<AovSums>& aovs() const { return aovs_; }
 
-    // Adds another film's sums (of other samples of the same image), pixel by pixel; AOV sums
-    // too if both have them (a fingerprint tells films with and without apart).
+    // Adds another film's sums (of other samples of the same image), pixel by pixel, and its
+    // light paths; AOV sums too if both have them (a fingerprint tells films with and without
+    // apart).
     void merge(const Film& other);
 
     // The mean of each pixel's samples (0 where it has none yet).
@@ -128,6 +135,7 @@ private:
     int width_, height_;
     std::vector<PixelSums> pixels_;
     std::vector<AovSums> aovs_;
+    uint64_t light_paths_ = 0;
 };
 
 }  // namespace glint

@@ -39,6 +39,8 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
     settings_.spp = std::max(round, (settings_.spp + round - 1) / round * round);
     if (settings_.first_sample % round != 0)
         throw std::invalid_argument("the first sample must be a multiple of " + std::to_string(round));
+    if (settings_.adaptive.on()) adaptive_.emplace(settings_.adaptive, settings_.spp, film_.width(), film_.height());
+    counts_light_paths_ = adaptive_ && tracer_.strategies().light_tracing() && !settings_.whole_image();
 }
 
 Ray RenderJob::camera_ray(int x, int y, uint32_t index, const double* film, Rng& rng) const {
@@ -111,8 +113,10 @@ bool RenderJob::render_tile(size_t tile, uint32_t first, uint32_t last) {
     const size_t aov_count = settings_.aovs ? round : 0;
     for (int y = pixels.y0; y < pixels.y1; ++y)
         for (int x = pixels.x0; x < pixels.x1; ++x) {
-            if (!window.contains(x, y)) {
-                trace_light_paths(x, y, first, last);
+            if (!takes_camera_samples(x, y, window)) {
+                // Outside the window, for the splats its light paths leave inside; a stopped
+                // pixel's, only where the film counts light paths apart (counts_light_paths_).
+                if (!window.contains(x, y) || counts_light_paths_) trace_light_paths(x, y, first, last);
                 continue;
             }
             for (uint32_t s = first; s < last; s += round) {
@@ -122,6 +126,14 @@ bool RenderJob::render_tile(size_t tile, uint32_t first, uint32_t last) {
             }
         }
     return true;
+}
+
+bool RenderJob::takes_camera_samples(int x, int y, const Region& window) const {
+    return window.contains(x, y) && (!adaptive_ || adaptive_->active(x - window.x0, y - window.y0));
+}
+
+void RenderJob::start_pass() {
+    if (adaptive_) adaptive_->update(film_);
 }
 
 void RenderJob::trace_light_paths(int x, int y, uint32_t first, uint32_t last) const {
@@ -152,11 +164,20 @@ Progress RenderJob::progress() const {
     p.spp_done = spp_done_;
     p.spp_target = settings_.spp;
     p.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
-    p.samples_per_second =
-        p.seconds > 0 ? double(spp_done_ - spp_at_start_) * film_.width() * film_.height() / p.seconds : 0;
+    p.pixels = uint64_t(film_.width()) * uint64_t(film_.height());
+    p.active_pixels = adaptive_ ? adaptive_->active_pixels() : p.pixels;
+    p.mean_spp = adaptive_ ? film_.camera_samples_per_pixel() : double(spp_done_);
+    p.samples_per_second = p.seconds > 0 ? (p.mean_spp - mean_spp_at_start_) * double(p.pixels) / p.seconds : 0;
     p.error_estimate = film_.error_estimate();
     p.dropped = film_.dropped();
     return p;
+}
+
+// With adaptive sampling a pass ends at the next check (every pass but a last short one is a
+// check interval): the mask changes only between passes, so it is decided at the same sample
+// counts whatever the timing, and a checkpoint (taken between passes) is always at a check.
+uint32_t RenderJob::pass_to_check() const {
+    return AdaptiveMask::kCheckInterval - spp_done_ % AdaptiveMask::kCheckInterval;
 }
 
 // Passes start at one round of samples, so a first image comes at once, and grow towards about
@@ -167,7 +188,7 @@ uint32_t RenderJob::next_pass_size(uint32_t previous) const {
     const double per_sample = seconds / std::max<double>(1, spp_done_);
     const double wanted = std::min<double>(2.0 * previous, 0.5 / std::max(per_sample, 1e-9));
     const uint32_t size = std::max(round, uint32_t(wanted) / round * round);
-    return std::min(size, settings_.spp - spp_done_);
+    return std::min(adaptive_ ? pass_to_check() : size, settings_.spp - spp_done_);
 }
 
 void RenderJob::resume(Film film, uint32_t spp_done) {
@@ -209,15 +230,18 @@ StopReason RenderJob::run(ThreadPool& pool, const std::function<void(const Progr
     start_ = Clock::now();
     if (on_preview && spp_done_ == 0) on_preview(preview(pool));
     spp_at_start_ = spp_done_;
+    mean_spp_at_start_ = adaptive_ ? film_.camera_samples_per_pixel() : double(spp_at_start_);
     if (settings_.time_limit > 0)
         deadline_ = start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(settings_.time_limit));
-    uint32_t pass = samples_per_round(settings_.filter);
+    uint32_t pass = adaptive_ ? std::min(pass_to_check(), settings_.spp - spp_done_) : samples_per_round(settings_.filter);
     while (spp_done_ < settings_.spp) {
         // A stopped pass leaves some tiles with more samples than others; each pixel's own
         // count keeps its mean right.
         const uint32_t first = settings_.first_sample + spp_done_;
+        start_pass();
         if (!render_pass(pool, first, first + pass)) break;
         spp_done_ += pass;
+        if (counts_light_paths_) film_.set_light_paths(spp_done_);
         const Progress p = progress();
         if (on_pass) on_pass(p);
         if (settings_.target_error > 0 && p.error_estimate <= settings_.target_error) return StopReason::target_error;

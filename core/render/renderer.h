@@ -7,8 +7,10 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "scene/camera.h"
+#include "render/adaptive_mask.h"
 #include "render/direct_view.h"
 #include "render/film.h"
 #include "render/filter.h"
@@ -21,8 +23,12 @@
 namespace glint {
 
 struct Progress {
-    uint32_t spp_done = 0;  // samples every pixel has
+    // Sample indices done: what every pixel has, or with adaptive sampling, what the pixels still
+    // active have (the most any pixel has); a stopped pixel keeps the count it stopped at.
+    uint32_t spp_done = 0;
     uint32_t spp_target = 0;
+    double mean_spp = 0;  // camera samples taken per pixel on average (spp_done unless adaptive)
+    uint64_t pixels = 0, active_pixels = 0;  // of the film; those that still receive samples
     double seconds = 0;
     double samples_per_second = 0;
     double error_estimate = kInfinity;
@@ -95,6 +101,11 @@ private:
     void trace_light_paths(int x, int y, uint32_t first, uint32_t last) const;
     bool should_stop() const;
     uint32_t next_pass_size(uint32_t previous) const;
+    uint32_t pass_to_check() const;
+    // Whether pixel (x, y) of the image takes camera samples in this pass.
+    bool takes_camera_samples(int x, int y, const Region& window) const;
+    // Before each pass: the adaptive mask from the film (passes then start at its checks).
+    void start_pass();
 
     std::shared_ptr<const Scene> scene_;
     RenderSettings settings_;
@@ -103,11 +114,21 @@ private:
     Film film_;
     LightTracer light_tracer_;
     DirectViewSplit direct_view_;
+    std::optional<AdaptiveMask> adaptive_;  // when settings_.adaptive.on()
+    // Light paths are traced apart from camera samples, and counted in the film: an adaptive
+    // region job with light tracing. Every light path is an independent path from the lights,
+    // whichever pixel's stream it draws from, so the splats need only be divided by the light
+    // paths traced per pixel of the image. A whole image traces one with each camera sample, and
+    // a stopped pixel traces none, so the film's camera samples per pixel count them exactly; a
+    // region job traces every sample's light paths outside the window, so its stopped pixels
+    // trace theirs too, and the film counts spp_done per pixel.
+    bool counts_light_paths_ = false;
     bool direct_view_decided_ = false;
     Region traced_;  // the pixels whose samples are traced: the window, or with light tracing all
     int tile_x0_, tile_y0_, tiles_x_, tiles_y_;
     uint32_t spp_done_ = 0;
     uint32_t spp_at_start_ = 0;  // samples resumed from, left out of the rate
+    double mean_spp_at_start_ = 0;
     std::atomic<bool> cancelled_{false};
     std::atomic<double> weight_{1};
     Clock::time_point start_{}, deadline_ = Clock::time_point::max();

@@ -27,6 +27,17 @@ inline Region intersection(const Region& a, const Region& b) {
     return {std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
 }
 
+// Adaptive sampling (core/render/adaptive_mask.h): a pixel whose estimated error is below the
+// threshold, with every pixel around it, stops receiving camera samples.
+struct AdaptiveSettings {
+    double threshold = 0;  // of AdaptiveMask's relative error; 0 = off (every pixel gets spp)
+    uint32_t min_spp = 0;  // samples before any pixel may stop; 0 = automatic from the threshold
+    // The whole job's samples when this render is a part of it (`--samples A:B`); 0 = spp. A
+    // part adapts on its own samples against the threshold scaled by sqrt(job_spp / spp).
+    uint32_t job_spp = 0;
+    bool on() const { return threshold > 0; }
+};
+
 struct RenderSettings {
     int width = 1024, height = 768;  // of the whole image, also for a region job
     // Empty (all zero): the whole image. Otherwise the window that is rendered and stored.
@@ -44,6 +55,7 @@ struct RenderSettings {
     // Whether the film also averages the camera paths' AOVs (render/aov.h: albedo, normal,
     // depth) for an EXR or a denoiser; off, they cost nothing.
     bool aovs = false;
+    AdaptiveSettings adaptive;
 
     bool whole_image() const { return region == Region{}; }
     // The pixels rendered: the region, or the whole image.

@@ -33,7 +33,8 @@ struct RenderOptions {
     std::optional<uint64_t> seed;
     std::optional<std::string> encoding;
     unsigned threads = 0;
-    std::optional<double> target_error, time_limit;
+    std::optional<double> target_error, time_limit, adaptive_threshold;
+    std::optional<uint32_t> adaptive_min_spp;
     std::vector<int> region;  // x0, y0, x1, y1, when given
 };
 
@@ -64,6 +65,7 @@ void apply_sample_range(const std::string& range, FilmOverrides& o) {
 FilmOverrides film_overrides(const RenderOptions& o) {
     FilmOverrides f;
     f.spp = o.spp;
+    f.job_spp = o.spp;  // --samples replaces f.spp with the part's
     f.width = o.width;
     f.height = o.height;
     f.seed = o.seed;
@@ -71,6 +73,8 @@ FilmOverrides film_overrides(const RenderOptions& o) {
     if (!o.samples.empty()) apply_sample_range(o.samples, f);
     f.target_error = o.target_error;
     f.time_limit = o.time_limit;
+    f.adaptive_threshold = o.adaptive_threshold;
+    f.adaptive_min_spp = o.adaptive_min_spp;
     if (!o.region.empty()) f.region = Region{o.region[0], o.region[1], o.region[2], o.region[3]};
     if (o.aovs || !o.exr.empty()) f.aovs = true;
     return f;
@@ -254,6 +258,13 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--target-error", o->target_error,
                     "Stop once the estimated RMSE is at most this (film.target_error; >= 0, 0: off)");
     cmd->add_option("--time-limit", o->time_limit, "Stop after this many seconds (film.time_limit; >= 0, 0: off)");
+    in_range(cmd->add_option("--adaptive-threshold", o->adaptive_threshold,
+                             "Stop sampling pixels whose relative error is below this (film.adaptive.threshold; 0: off)"),
+             numbers(0, kMaxAdaptiveThreshold));
+    const IntegerRange min_spp = adaptive_min_spp_range(SceneLimits{});
+    in_range(cmd->add_option("--adaptive-min-spp", o->adaptive_min_spp,
+                             "Samples before a pixel may stop (film.adaptive.min_spp; 0: automatic)"),
+             integers(min_spp.min, min_spp.max));
     cmd->add_option("--region", o->region,
                     "Render only the window X0,Y0,X1,Y1 (pixels, rows from the top, X1 and Y1 excluded; film.region)")
         ->delimiter(',')

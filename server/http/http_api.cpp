@@ -316,6 +316,16 @@ void HttpApi::install_image_routes(httplib::Server& server) {
         const std::vector<uint8_t> exr = encode_exr(s.image->width, s.image->height, layers);
         res.set_content(reinterpret_cast<const char*>(exr.data()), exr.size(), "image/x-exr");
     });
+    // An adaptive job's camera samples per pixel, grey from 0 (black) to X-Glint-Samples-Max.
+    server.Get(job + "/samples.png", [this](const Req& req, Res& res) {
+        auto j = job_or_404(req, res);
+        if (!j) return;
+        if (!j->settings().adaptive.on()) return send_error(res, 404, "not an adaptive job: every pixel has spp_done samples");
+        const JobSnapshot s = j->snapshot();
+        if (!s.samples_png) return send_error(res, 409, "no pass has finished yet");
+        res.set_header("X-Glint-Samples-Max", std::to_string(s.samples_max));
+        res.set_content(reinterpret_cast<const char*>(s.samples_png->data()), s.samples_png->size(), "image/png");
+    });
     server.Get(job + "/thumbnail.png", [this](const Req& req, Res& res) {
         auto j = job_or_404(req, res);
         if (!j) return;

@@ -28,7 +28,8 @@ auto load_checked(F&& f) -> decltype(f()) {
 }
 
 constexpr const char* kPresetFields[] = {"preset",     "width",        "height",   "spp",    "seed",
-                                         "time_limit", "target_error", "priority", "region", "aovs"};
+                                         "time_limit", "target_error", "priority", "region", "aovs",
+                                         "adaptive"};
 
 void check_preset_fields(const nlohmann::json& request) {
     for (const auto& item : request.items()) {
@@ -83,6 +84,25 @@ std::optional<int64_t> film_integer(const nlohmann::json& request, FilmInteger f
     return v.get<int64_t>();
 }
 
+// {"threshold": T, "min_spp": N}, as film.adaptive in a scene; check_settings() bounds them.
+void adaptive(const nlohmann::json& request, const SceneLimits& limits, FilmOverrides& o) {
+    if (!request.contains("adaptive")) return;
+    const nlohmann::json& v = request.at("adaptive");
+    if (!v.is_object()) throw InvalidRequest("must be an object {\"threshold\": T, \"min_spp\": N}", "adaptive");
+    for (const auto& item : v.items())
+        if (item.key() != "threshold" && item.key() != "min_spp")
+            throw InvalidRequest("unknown field (expected one of: threshold, min_spp)", "adaptive." + item.key());
+    if (v.contains("threshold")) {
+        if (!v.at("threshold").is_number()) throw InvalidRequest("must be a number", "adaptive.threshold");
+        o.adaptive_threshold = v.at("threshold").get<double>();
+    }
+    if (!v.contains("min_spp")) return;
+    const IntegerRange range = adaptive_min_spp_range(limits);
+    if (!v.at("min_spp").is_number_integer() || !range.contains(v.at("min_spp").get<int64_t>()))
+        throw InvalidRequest("must be an integer in " + range.text() + " (0: automatic)", "adaptive.min_spp");
+    o.adaptive_min_spp = uint32_t(v.at("min_spp").get<int64_t>());
+}
+
 FilmOverrides overrides_of(const nlohmann::json& request, const SceneLimits& limits) {
     FilmOverrides o;
     if (auto w = film_integer(request, FilmInteger::width, limits)) o.width = int(*w);
@@ -93,6 +113,7 @@ FilmOverrides overrides_of(const nlohmann::json& request, const SceneLimits& lim
     o.target_error = number(request, "target_error");
     o.region = region(request, limits);
     o.aovs = boolean(request, "aovs");
+    adaptive(request, limits, o);
     return o;
 }
 

@@ -44,6 +44,11 @@ nlohmann::json job_status(const Job& job) {
                        {"full_width", job.settings().width}, {"full_height", job.settings().height}};
     }
     if (s.preview) j["preview"] = true;
+    if (job.settings().adaptive.on()) {
+        j["adaptive"] = {{"threshold", job.settings().adaptive.threshold}, {"min_spp", job.settings().adaptive.min_spp},
+                         {"samples_max", s.samples_max}};
+        j["urls"]["samples"] = self + "/samples.png";
+    }
     if (s.parts)
         j["parts"] = {{"queued", s.parts->queued}, {"running", s.parts->running}, {"done", s.parts->done},
                       {"requeued", s.parts->requeued}};

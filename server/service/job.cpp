@@ -1,6 +1,7 @@
 #include "service/job.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <spdlog/spdlog.h>
 
@@ -89,7 +90,29 @@ void Job::save_final(JobState state, const Progress& progress) const {
     }
 }
 
+namespace {
+
+// Each pixel's camera samples over the most any pixel has, as a linear grey PNG.
+std::vector<uint8_t> samples_png(const Film& film, uint64_t& most) {
+    most = 1;
+    for (const PixelSums& px : film.pixels()) most = std::max(most, px.count);
+    Image grey(film.width(), film.height());
+    for (int y = 0; y < film.height(); ++y)
+        for (int x = 0; x < film.width(); ++x)  // gamma 2.2 encoding undone, so grey is linear in count
+            grey.set(x, y, Rgb{std::pow(double(film.pixel(x, y).count) / double(most), 2.2)});
+    return encode_png(grey, Encoding::gamma22);
+}
+
+}  // namespace
+
 void Job::publish(JobState state, const Progress& progress) {
+    if (render_.settings().adaptive.on()) {
+        uint64_t most = 0;
+        auto png = std::make_shared<const std::vector<uint8_t>>(samples_png(render_.film(), most));
+        std::lock_guard lock(mutex_);
+        snapshot_.samples_png = std::move(png);
+        snapshot_.samples_max = most;
+    }
     publish_frame(render_.film().mean(), film_layers(render_.film()), state, progress, false);
 }
 

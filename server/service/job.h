@@ -29,6 +29,10 @@ struct JobSnapshot {
     // The film's other EXR layers at that frame (io/exr_file.h: sample counts, variance, AOVs);
     // null for a preview, which has none.
     std::shared_ptr<const std::vector<ExrLayer>> layers;
+    // An adaptive job's camera samples per pixel at that frame, as grey (black 0, white
+    // samples_max, linear); null for other jobs, whose pixels all have spp_done.
+    std::shared_ptr<const std::vector<uint8_t>> samples_png;
+    uint64_t samples_max = 0;
     std::string error;                                // why a failed job failed
     std::optional<PartCounts> parts;                  // a farm job's parts, once submitted
     std::optional<StopReason> stop;                   // why it ended (not set for a failed job)

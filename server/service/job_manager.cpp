@@ -51,6 +51,10 @@ std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene, const std::str
     if (farm_ && (scene.settings.time_limit > 0 || scene.settings.target_error > 0))
         throw InvalidRequest("a job on the farm renders every sample it asks for: it takes no time limit or target error",
                              scene.settings.time_limit > 0 ? "film.time_limit" : "film.target_error");
+    // Its parts would each adapt with a scaled threshold, and the farm does not pass one on.
+    if (farm_ && scene.settings.adaptive.on())
+        throw InvalidRequest("a job on the farm renders every sample it asks for: it takes no adaptive sampling",
+                             "film.adaptive");
     auto job = std::make_shared<Job>(new_job_id(), scene, store_.get(), std::chrono::system_clock::now(), farm_job(request),
                                      priority);
     {

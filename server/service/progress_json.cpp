@@ -9,6 +9,9 @@ using nlohmann::json;
 json progress_json(const Progress& p) {
     return {{"spp_done", p.spp_done},
             {"spp_target", p.spp_target},
+            {"mean_spp", p.mean_spp},
+            {"pixels", p.pixels},
+            {"active_pixels", p.active_pixels},
             {"elapsed", p.seconds},
             {"samples_per_second", p.samples_per_second},
             {"error_estimate", std::isfinite(p.error_estimate) ? json(p.error_estimate) : json()},
@@ -37,6 +40,10 @@ Progress progress_from_json(const json& j) {
     p.error_estimate =
         j.at("error_estimate").is_null() ? kInfinity : j.at("error_estimate").get<double>();
     p.dropped = field(j, "dropped_samples", "dropped").get<uint64_t>();
+    // Absent from stores written before adaptive sampling: every pixel had spp_done.
+    p.mean_spp = j.value("mean_spp", double(p.spp_done));
+    p.pixels = j.value("pixels", uint64_t(0));
+    p.active_pixels = j.value("active_pixels", p.pixels);
     return p;
 }
 

@@ -1,7 +1,7 @@
 // Drives glint's page in Debian's headless Chromium against a real `glint serve` on a free
 // loopback port: picks a size, sets the SPP slider, renders, sees the image change at least
 // twice, zooms and pans, saves a screenshot, cancels, and sees a server error shown next to the
-// scene field. Then stops the server with SIGTERM and expects a clean exit.
+// scene field; shows an adaptive job's sample counts with the Samples toggle. Then stops the server with SIGTERM and expects a clean exit.
 // Usage: node page_test.mjs GLINT_BINARY SOURCE_DIR SCREENSHOT.png
 import { check, finish, imageHash, launchBrowser, startServer, waitFor } from "./support.mjs";
 
@@ -62,6 +62,24 @@ try {
   await waitFor(() => page.isVisible("#scene-error"), 10000, "the error message");
   const error = await page.textContent("#scene-error");
   check("a server error is shown next to the scene field", error === "objects[0].radius: must be > 0", error);
+
+  // An adaptive job: the Samples toggle shows each pixel's samples in place of the image.
+  const adaptive = await (await fetch(`${base}/jobs`, {
+    method: "POST", headers: { "Content-Type": "application/json" },
+    body: JSON.stringify({ preset: "cornell", width: 64, height: 48, spp: 96, adaptive: { threshold: 0.05, min_spp: 16 } }),
+  })).json();
+  await page.goto(`${base}/?job=${adaptive.id}`);
+  await waitFor(async () => (await page.textContent("#fig-state")) === "done", 60000, "the adaptive job to end");
+  await waitFor(async () => Boolean(await page.evaluate(imageHash)), 10000, "its image");
+  const rendered = await page.evaluate(imageHash);
+  check("the Samples toggle is enabled for an adaptive job", !(await page.isDisabled("#samples-view")));
+  await page.click("#samples-view");
+  await waitFor(async () => {
+    const h = await page.evaluate(imageHash);
+    return h && h !== rendered;
+  }, 10000, "the samples view");
+  check("the Samples toggle shows the sample counts in place of the image",
+        (await page.getAttribute("#image", "src")).includes("/samples.png"));
   check("the page raised no script errors", pageErrors.length === 0, pageErrors.join("; "));
 } catch (e) {
   check("the browser session", false, e.message);

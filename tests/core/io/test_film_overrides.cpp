@@ -3,6 +3,8 @@
 // its field.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "io/film_overrides.h"
 
 namespace glint {
@@ -57,6 +59,29 @@ TEST(FilmOverrides, EachFaultNamesItsField) {
               "subpixels)");
     EXPECT_EQ(error_of([](FilmOverrides& o) { o.time_limit = -1; }), "film.time_limit: must be a finite number >= 0 (0: off)");
     EXPECT_EQ(error_of([](FilmOverrides& o) { o.seed = UINT64_MAX; }), "no error");
+    EXPECT_EQ(error_of([](FilmOverrides& o) { o.adaptive_threshold = -0.1; }),
+              "film.adaptive.threshold: must be a number in [0, 1] (0: off)");
+    EXPECT_EQ(error_of([](FilmOverrides& o) { o.adaptive_threshold = std::nan(""); }),
+              "film.adaptive.threshold: must be a number in [0, 1] (0: off)");
+    EXPECT_EQ(error_of([](FilmOverrides& o) { o.adaptive_min_spp = 2000000; }),
+              "film.adaptive.min_spp: must be an integer in [0, 1048576] (0: automatic)");
+}
+
+// `--samples A:B` keeps the whole job's spp, which the part's threshold is scaled by.
+TEST(FilmOverrides, APartKnowsItsWholeJobsSamples) {
+    RenderSettings settings;
+    settings.spp = 256;
+    FilmOverrides part;
+    part.first_sample = 64;
+    part.spp = 64;
+    part.adaptive_threshold = 0.01;
+    apply_film_overrides(part, settings, {});
+    EXPECT_EQ(settings.adaptive.job_spp, 256u);
+    EXPECT_EQ(settings.adaptive.threshold, 0.01);
+    RenderSettings given;
+    part.job_spp = 128;  // --spp 128 --samples 64:128
+    apply_film_overrides(part, given, {});
+    EXPECT_EQ(given.adaptive.job_spp, 128u);
 }
 
 }  // namespace

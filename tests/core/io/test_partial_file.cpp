@@ -158,13 +158,13 @@ TEST(Partial, ReadsVersionsTwoAndThreeWithoutHalves) {
     EXPECT_EQ(decode_error(with_checksum(v6)), "unsupported partial file version 6");
 }
 
-// Version 4 is version 5 without the flags (and so without AOVs).
+// Version 4 is version 5 without the flags (and so without AOVs) and the light paths.
 TEST(Partial, ReadsVersionFourAndRefusesUnknownFlags) {
     LoadedScene s = testing::small_cornell();
     s.settings.spp = 4;
     const std::vector<uint8_t> v5 = render_part(s, 0, 4);
     std::vector<uint8_t> v4 = v5;
-    v4.erase(v4.begin() + 44, v4.begin() + 48);
+    v4.erase(v4.begin() + 44, v4.begin() + 56);
     put(v4, 8, uint32_t(4));
     const Partial p = decode_partial(with_checksum(v4));
     EXPECT_FALSE(p.film.has_aovs());

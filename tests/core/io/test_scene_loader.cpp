@@ -91,6 +91,12 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
     EXPECT_EQ(error_of(R"({"film": {"spp": 99999999}})"), "film.spp: must be in [1, 1048576]");
     EXPECT_EQ(error_of(R"({"film": {"aovs": 1}})"), "film.aovs: must be true or false");
     EXPECT_EQ(error_of(R"({"film": {"aovs": true}})"), "no error");
+    EXPECT_EQ(error_of(R"({"film": {"adaptive": {"threshold": 2}}})"),
+              "film.adaptive.threshold: must be a number in [0, 1] (0: off)");
+    EXPECT_EQ(error_of(R"({"film": {"adaptive": {"min_spp": -1}}})"), "film.adaptive.min_spp: must be in [0, 1048576]");
+    EXPECT_EQ(error_of(R"({"film": {"adaptive": {"threshold": 0.01, "step": 4}}})"),
+              "film.adaptive.step: unknown field (expected one of: threshold, min_spp)");
+    EXPECT_EQ(error_of(R"({"film": {"adaptive": {"threshold": 0.01, "min_spp": 32}}})"), "no error");
     EXPECT_EQ(error_of(R"({"camera": {"direction": [0, 0, 0]}})"), "camera.direction: must not be zero");
     EXPECT_EQ(error_of(R"({"camera": {"look_at": [0, 0, 0]}})"), "camera.look_at: must differ from position");
     EXPECT_EQ(error_of(R"({"camera": {"direction": [1e-200, -1e-200, 0]}})"), "no error");  // tiny, not zero

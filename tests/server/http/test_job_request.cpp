@@ -58,5 +58,29 @@ TEST(JobRequest, EveryMalformedBodyNamesItsByte) {
               "malformed: malformed JSON at byte 34: number overflow parsing '1e999'");
 }
 
+// The path and message of a request's error, or "ok".
+std::string path_and_error(const std::string& body) {
+    try {
+        parse_job_request(body, GLINT_SCENES_DIR, ServiceConfig{}.scene);
+    } catch (const ServiceError& e) {
+        return e.path() + ": " + e.what();
+    }
+    return "ok";
+}
+
+TEST(JobRequest, AdaptiveIsAnObjectWithThresholdAndMinSpp) {
+    EXPECT_EQ(path_and_error(R"({"preset": "cornell", "spp": 4, "adaptive": {"threshold": 0.02, "min_spp": 16}})"), "ok");
+    EXPECT_EQ(path_and_error(R"({"preset": "cornell", "adaptive": 0.02})"),
+              R"(adaptive: must be an object {"threshold": T, "min_spp": N})");
+    EXPECT_EQ(path_and_error(R"({"preset": "cornell", "adaptive": {"threshold": "low"}})"),
+              "adaptive.threshold: must be a number");
+    EXPECT_EQ(path_and_error(R"({"preset": "cornell", "adaptive": {"threshold": 3}})"),
+              "adaptive.threshold: must be a number in [0, 1] (0: off)");
+    EXPECT_EQ(path_and_error(R"({"preset": "cornell", "adaptive": {"min_spp": 1.5}})"),
+              "adaptive.min_spp: must be an integer in [0, 65536] (0: automatic)");
+    EXPECT_EQ(path_and_error(R"({"preset": "cornell", "adaptive": {"every": 16}})"),
+              "adaptive.every: unknown field (expected one of: threshold, min_spp)");
+}
+
 }  // namespace
 }  // namespace glint
