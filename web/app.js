@@ -9,6 +9,7 @@ const ui = {
   spp: $("spp"), sppLabel: $("spp-label"), timeLimit: $("time-limit"), targetError: $("target-error"),
   priority: $("priority"), render: $("render"), cancel: $("cancel"),
   image: $("image"), viewport: $("viewport"), regionMode: $("region-mode"), regionBox: $("region-box"),
+  denoised: $("denoised"),
   plot: $("error-plot"), png: $("download-png"), pfm: $("download-pfm"),
   jobList: $("job-list"), jobCount: $("job-count"), jobsError: $("jobs-error"),
 };
@@ -125,6 +126,7 @@ function showJob(status) {
   if (shown?.events) shown.events.close();
   shown = { id: status.id, status, events: null };
   errorHistory = [];
+  denoisedFrame = 0;
   rememberShown(status.id);
   ui.png.href = withToken(status.urls.png);
   ui.pfm.href = withToken(status.urls.pfm);
@@ -139,7 +141,7 @@ function showJob(status) {
 function watch(status) {
   const events = new EventSource(withToken(status.urls.events));
   shown.events = events;
-  ui.image.src = withToken(status.urls.stream);
+  showImage(status);
   setRunning(true);
   events.addEventListener("progress", (e) => showFigures(JSON.parse(e.data)));
   events.addEventListener("done", (e) => finish(events, JSON.parse(e.data)));
@@ -148,6 +150,7 @@ function watch(status) {
 
 // The job's last frame as a plain PNG (also when the stream was cut short); none before the first.
 function showFinalImage(status) {
+  if (denoisedShown()) return showImage(status);
   if (status.frame > 0) ui.image.src = withToken(`${status.urls.png}?final=${status.frame}`);
   else ui.image.removeAttribute("src");
 }
@@ -227,6 +230,7 @@ function showFigures(s) {
   ui.png.classList.toggle("disabled", !enabled);
   ui.pfm.classList.toggle("disabled", !enabled);
   if (s.error_estimate > 0 && s.elapsed > 0) errorHistory.push([s.elapsed, s.error_estimate]);
+  if (denoisedShown() && shown?.id === s.id) showImage(s);
   drawPlot(s.target_error > 0 ? s.target_error : null);
 }
 
@@ -236,6 +240,7 @@ ui.render.addEventListener("click", startRender);
 ui.cancel.addEventListener("click", cancelRender);
 ui.image.addEventListener("load", applyZoom);
 ui.regionMode.addEventListener("click", toggleRegionMode);
+ui.denoised.addEventListener("click", toggleDenoised);
 for (const b of document.querySelectorAll("button.zoom")) b.addEventListener("click", () => setZoom(Number(b.dataset.zoom)));
 document.addEventListener("visibilitychange", () => { if (!document.hidden) pollJobs(); });
 enableDragging();

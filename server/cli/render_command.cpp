@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "cli/option_range.h"
 #include "cli/progress_bar.h"
+#include "denoise/denoiser.h"
 #include "io/film_overrides.h"
 #include "io/fingerprint.h"
 #include "io/partial_file.h"
@@ -33,12 +34,19 @@ struct RenderOptions {
     unsigned threads = 0;
     std::optional<double> target_error, time_limit;
     std::vector<int> region;  // x0, y0, x1, y1, when given
+    bool denoise = false;
 };
 
 // Where one scene's results go.
 struct Outputs {
     std::string png, hdr, partial, checkpoint;
+    std::string denoised;  // OUT.denoised.png beside the PNG, with --denoise
 };
+
+// "out.png" -> "out.denoised.png": the denoised preview beside the unbiased image.
+std::string denoised_path(const std::string& png, bool denoise) {
+    return denoise ? std::filesystem::path(png).replace_extension(".denoised.png").string() : "";
+}
 
 RenderJob* g_interruptible = nullptr;
 
@@ -74,9 +82,11 @@ FilmOverrides film_overrides(const RenderOptions& o) {
 }
 
 // `print` is the fingerprint of the scene and settings (needed only for a partial file).
-void write_outputs(const RenderJob& job, uint64_t print, const Outputs& out) {
+void write_outputs(const RenderJob& job, uint64_t print, const Outputs& out, ThreadPool& pool) {
     const Image image = job.film().mean();
     if (!out.png.empty()) write_file(out.png, encode_png(image, job.settings().encoding));
+    if (!out.denoised.empty())
+        write_file(out.denoised, encode_png(denoise(job.film(), DenoiserConfig{}, pool), job.settings().encoding));
     if (!out.hdr.empty()) write_file(out.hdr, encode_pfm(image));
     if (!out.partial.empty()) write_file(out.partial, encode_partial(partial_of(job, print, job.progress().spp_done)));
 }
@@ -154,7 +164,7 @@ int render_scene(const RenderOptions& o, const std::string& scene, const Outputs
     bar.finish();
     g_interruptible = nullptr;
     try {
-        write_outputs(job, print, out);
+        write_outputs(job, print, out, pool);
         if (reason == StopReason::completed) checkpoint.remove();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "glint: %s\n", e.what());
@@ -189,8 +199,9 @@ int render_batch(const RenderOptions& o, ThreadPool& pool) {
     int failed = 0;
     for (const auto& scene : scenes) {
         const std::string stem = scene.stem().string();
-        Outputs out{(std::filesystem::path(o.output) / (stem + ".png")).string(),
-                    o.hdr.empty() ? "" : (std::filesystem::path(o.hdr) / (stem + ".pfm")).string(), "", ""};
+        const std::string png = (std::filesystem::path(o.output) / (stem + ".png")).string();
+        Outputs out{png, o.hdr.empty() ? "" : (std::filesystem::path(o.hdr) / (stem + ".pfm")).string(), "", "",
+                    denoised_path(png, o.denoise)};
         const int status = render_scene(o, scene.string(), out, pool);
         if (status == 130) return 130;
         failed += status != 0;
@@ -214,8 +225,13 @@ int run_render(const RenderOptions& o) {
         std::fprintf(stderr, "glint: give -o (a PNG, or a folder for several scenes) or --partial\n");
         return 2;
     }
+    if (o.denoise && o.output.empty()) {
+        std::fprintf(stderr, "glint: --denoise writes OUT.denoised.png beside the PNG: give -o\n");
+        return 2;
+    }
     if (batch) return render_batch(o, pool);
-    return render_scene(o, o.scenes.front(), Outputs{o.output, o.hdr, o.partial, o.checkpoint}, pool);
+    return render_scene(o, o.scenes.front(),
+                        Outputs{o.output, o.hdr, o.partial, o.checkpoint, denoised_path(o.output, o.denoise)}, pool);
 }
 
 }  // namespace
@@ -228,6 +244,8 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_option("--hdr", o->hdr, "Also write the linear image as PFM (a folder for several scenes)");
     cmd->add_option("--samples", o->samples, "Render only samples A..B-1 of every pixel (A:B), for --partial");
     cmd->add_option("--partial", o->partial, "Write the per-pixel sums to this file, for glint merge");
+    cmd->add_flag("--denoise", o->denoise,
+                  "Also write OUT.denoised.png, a denoised preview (docs/denoiser.md); OUT stays the unbiased image");
     cmd->add_option("--scenes", o->meshes, "Folder the scene's mesh files are read from (default: the scene file's)");
     cmd->add_option("--checkpoint", o->checkpoint,
                     "Keep the film in this file as the render goes, and continue from it if it is there");

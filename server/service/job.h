@@ -10,6 +10,7 @@
 #include <mutex>
 #include <string>
 
+#include "denoise/half_buffers.h"
 #include "io/partial_file.h"
 #include "io/scene_loader.h"
 #include "render/renderer.h"
@@ -25,6 +26,9 @@ struct JobSnapshot {
     Progress progress;
     std::shared_ptr<const std::vector<uint8_t>> png;  // null until the first pass
     std::shared_ptr<const Image> image;               // the linear mean image of that frame
+    // What the denoiser reads of that frame's film (null for the first preview): 44 bytes a
+    // pixel, so that a denoised preview can be made on request while the film goes on changing.
+    std::shared_ptr<const HalfBuffers> halves;
     std::string error;                                // why a failed job failed
     std::optional<PartCounts> parts;                  // a farm job's parts, once submitted
     std::optional<StopReason> stop;                   // why it ended (not set for a failed job)
@@ -77,6 +81,9 @@ public:
     void fail(const std::string& error);
 
     JobSnapshot snapshot() const;
+    // The latest frame denoised (denoise/denoiser.h), as PNG; made on the first request for a
+    // frame and kept until the next. Null until a pass has finished.
+    std::shared_ptr<const std::vector<uint8_t>> denoised_png() const;
     // Waits until there is a frame newer than `after`, the job is final, or `timeout` passes.
     JobSnapshot wait(uint64_t after, std::chrono::milliseconds timeout) const;
 
@@ -93,7 +100,8 @@ private:
     void publish(JobState state, const Progress& progress);
     // Publishes `image` as a frame without touching the film (the first preview).
     void publish_preview(const Image& image);
-    void publish_frame(Image frame, JobState state, const Progress& progress, bool preview);
+    void publish_frame(Image frame, std::shared_ptr<const HalfBuffers> halves, JobState state,
+                       const Progress& progress, bool preview);
     void set_stop(StopReason reason);
     // The job's state.json as it would be in `state`; record_locked() with mutex_ held.
     JobRecord record(JobState state, const std::string& error, const Progress& progress) const;
@@ -120,6 +128,9 @@ private:
     mutable std::mutex mutex_;
     mutable std::condition_variable changed_;
     JobSnapshot snapshot_;
+    mutable std::mutex denoised_mutex_;  // held while a denoised frame is made: made once
+    mutable uint64_t denoised_frame_ = 0;
+    mutable std::shared_ptr<const std::vector<uint8_t>> denoised_png_;
 };
 
 }  // namespace glint

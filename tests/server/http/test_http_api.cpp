@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "denoise/denoiser.h"
 #include "http/job_view.h"
 #include "support/http_server_fixture.h"
 #include "support/raw_http.h"
@@ -63,6 +64,25 @@ TEST_F(Server, JobLifecycleAndImages) {
     bool listed = false;
     for (const auto& j : get_json("/jobs")) listed |= j["id"] == id;
     EXPECT_TRUE(listed);
+}
+
+TEST_F(Server, ServesTheDenoisedPreviewBesideTheUnbiasedImage) {
+    const std::string id = post("/jobs", kSmallCornell, 202)["id"];
+    const json done = wait_until_final(id);
+    EXPECT_EQ(done["urls"]["denoised"], "/jobs/" + id + "/image.denoised.png");
+    auto res = client_->Get(("/jobs/" + id + "/image.denoised.png").c_str());
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 200);
+    EXPECT_EQ(res->get_header_value("Content-Type"), "image/png");
+    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    s.settings.width = 40;
+    s.settings.height = 30;
+    s.settings.spp = 16;
+    ThreadPool pool(1);
+    const std::vector<uint8_t> expected = encode_png(denoise(testing::render(s)->film(), DenoiserConfig{}, pool), Encoding::gamma22);
+    EXPECT_EQ(res->body, std::string(expected.begin(), expected.end()));
+    EXPECT_NE(res->body, client_->Get(("/jobs/" + id + "/image.png").c_str())->body);  // the PNG stays unbiased
+    EXPECT_EQ(client_->Get("/jobs/nope/image.denoised.png")->status, 404);
 }
 
 TEST_F(Server, BadInputGetsAStatusAndAJsonBody) {
