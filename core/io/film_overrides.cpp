@@ -64,6 +64,7 @@ void apply_film_overrides(const FilmOverrides& o, RenderSettings& s, const Scene
     if (o.target_error) s.target_error = *o.target_error;
     if (o.time_limit) s.time_limit = *o.time_limit;
     if (o.region) s.region = *o.region;
+    if (o.aovs) s.aovs = *o.aovs;
     check_settings(s, limits);
 }
 

@@ -39,6 +39,7 @@ struct FilmOverrides {
     std::optional<uint32_t> first_sample;
     std::optional<double> target_error, time_limit;
     std::optional<Region> region;
+    std::optional<bool> aovs;
 };
 
 // Applies the overrides to `settings`, then checks the result with check_settings().

@@ -35,6 +35,7 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
     h.value(settings.filter);
     h.value(settings.sampler);
     h.value(settings.seed);
+    if (settings.aovs) h.value(settings.aovs);  // so that films without AOVs keep their fingerprints
     if (!settings.whole_image())  // so that films of whole renders keep their fingerprints
         for (int v : {settings.region.x0, settings.region.y0, settings.region.x1, settings.region.y1}) h.value(v);
     return h.digest();

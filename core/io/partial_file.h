@@ -1,11 +1,11 @@
 // Partial renders: the per-pixel sums of samples [first, end) of a job, written by
 // `glint render --samples A:B --partial FILE` and combined by `glint merge`.
 //
-// Format (version 4, little-endian, no padding; versions 2 and 3 are still read, see
+// Format (version 5, little-endian, no padding; versions 2 to 4 are still read, see
 // partial_file.cpp):
 //   offset  size  field
 //   0       8     magic "GLNTPART"
-//   8       4     uint32 version = 4
+//   8       4     uint32 version = 5
 //   12      4     uint32 width
 //   16      4     uint32 height
 //   20      4     uint32 first sample (inclusive)
@@ -13,10 +13,13 @@
 //   28      4     uint32 PNG encoding (0 gamma 2.2, 1 sRGB)
 //   32      4     uint32 sampler version (kSamplerVersion, sampler.h)
 //   36      8     uint64 fingerprint of scene and settings (core/io/fingerprint.h)
-//   44      128·W·H per pixel, rows top to bottom: float64 sum r, g, b; float64 sum of the first
+//   44      4     uint32 flags: bit 0 set if the film has AOVs (render/aov.h); no other bits
+//   48      128·W·H per pixel, rows top to bottom: float64 sum r, g, b; float64 sum of the first
 //                 half's samples r, g, b; uint64 sample count; uint64 first half's sample count;
 //                 uint64 dropped samples; int64 light-tracing splat sums r, g, b and sums of
 //                 squares r, g, b (fixed point, see film.h); uint64 dropped splats
+//   then, with AOVs only, 112·W·H per pixel in the same order: float64 sums of albedo r, g, b,
+//                 normal x, y, z and depth, then the same over the first half's samples
 //   end-8   8     uint64 FNV-1a of every byte before it
 #pragma once
 
@@ -48,7 +51,7 @@ struct Partial {
 Partial partial_of(const RenderJob& render, uint64_t fingerprint, uint32_t spp_done);
 
 std::vector<uint8_t> encode_partial(const Partial& partial);
-uint64_t partial_file_size(int width, int height);
+uint64_t partial_file_size(int width, int height, bool aovs = false);
 Partial decode_partial(const std::vector<uint8_t>& bytes);  // throws PartialError
 
 // Checks that `checkpoint` may continue the job of `fingerprint` and `settings`: same scene and

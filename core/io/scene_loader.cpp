@@ -155,7 +155,7 @@ private:
 
     RenderSettings parse_film(const At& at, Rgb& background) const {
         at.expect_object({"width", "height", "spp", "filter", "sampler", "background", "encoding", "seed", "time_limit",
-                          "target_error", "region"});
+                          "target_error", "region", "aovs"});
         RenderSettings s;
         if (at.has("width")) s.width = int(film_integer(at, FilmInteger::width));
         if (at.has("height")) s.height = int(film_integer(at, FilmInteger::height));
@@ -171,6 +171,7 @@ private:
         if (at.has("time_limit")) s.time_limit = at["time_limit"].number();
         if (at.has("target_error")) s.target_error = at["target_error"].number();
         if (at.has("region")) s.region = region(at["region"]);
+        if (at.has("aovs")) s.aovs = at["aovs"].boolean();
         return s;
     }
 

@@ -13,7 +13,43 @@ bool to_fixed(double value, double scale, int64_t& out) {
     return true;
 }
 
+void add(Aov& to, const Aov& a) {
+    to.albedo += a.albedo;
+    to.normal += a.normal;
+    to.depth += a.depth;
+}
+
+// One AOV of `a` as a colour (depth in every channel).
+Rgb layer_of(const Aov& a, AovLayer layer) {
+    switch (layer) {
+        case AovLayer::albedo: return a.albedo;
+        case AovLayer::normal: return a.normal;
+        case AovLayer::depth: return Rgb{a.depth};
+    }
+    return Rgb{0};
+}
+
 }  // namespace
+
+void Film::add_aovs(AovSums& sums, std::span<const Aov> aovs, bool first_half) {
+    for (const Aov& a : aovs) add(sums.sum, a);
+    if (first_half)
+        for (const Aov& a : aovs) add(sums.half_sum, a);
+}
+
+Image Film::aov(AovLayer layer, AovHalf half) const {
+    if (!has_aovs()) return Image();
+    Image image(width_, height_);
+    for (size_t i = 0; i < pixels_.size(); ++i) {
+        const PixelSums& px = pixels_[i];
+        const Rgb all = layer_of(aovs_[i].sum, layer), first = layer_of(aovs_[i].half_sum, layer);
+        const uint64_t n = half == AovHalf::all ? px.count : half == AovHalf::first ? px.half_count
+                                                                                      : px.count - px.half_count;
+        const Rgb sum = half == AovHalf::all ? all : half == AovHalf::first ? first : all - first;
+        if (n > 0) image.set(int(i % width_), int(i / width_), sum / double(n));
+    }
+    return image;
+}
 
 void Film::splat(int x, int y, const Rgb& value) {
     PixelSums& px = pixels_[size_t(y) * width_ + x];
@@ -96,6 +132,11 @@ void Film::merge(const Film& other) {
         }
         px.splats_dropped += o.splats_dropped;
     }
+    if (has_aovs() && other.has_aovs())
+        for (size_t i = 0; i < aovs_.size(); ++i) {
+            add(aovs_[i].sum, other.aovs_[i].sum);
+            add(aovs_[i].half_sum, other.aovs_[i].half_sum);
+        }
 }
 
 uint64_t Film::dropped() const {

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "base/image.h"
+#include "render/aov.h"
 
 namespace glint {
 
@@ -39,20 +40,35 @@ struct alignas(64) PixelSums {
 };
 static_assert(sizeof(PixelSums) == 128 && offsetof(PixelSums, dropped) == 64);
 
+// A pixel's AOV sums (aov.h), over the same samples as its PixelSums' `sum` and `half_sum`, so
+// their means share its counts and a denoiser can compare the halves as it does the image's.
+struct AovSums {
+    Aov sum, half_sum;
+};
+
+// Which of a pixel's samples an AOV image averages: all kept, or one replicate's half.
+enum class AovHalf { all, first, second };
+enum class AovLayer { albedo, normal, depth };
+
 class Film {
 public:
-    Film(int width, int height) : width_(width), height_(height), pixels_(size_t(width) * height) {}
+    // With `aovs`, the film also keeps each pixel's AOV sums; without, it holds no memory for them.
+    Film(int width, int height, bool aovs = false)
+        : width_(width), height_(height), pixels_(size_t(width) * height), aovs_(aovs ? pixels_.size() : 0) {}
 
     int width() const { return width_; }
     int height() const { return height_; }
+    bool has_aovs() const { return !aovs_.empty(); }
 
     // Adds one round of samples to pixel (x, y) (y = 0 is the top row), from the sampler's
     // first replicate if `first_half`; every round of a pixel has the same size. A round with a
     // NaN or infinite component in any sample is dropped whole and its samples counted instead:
     // such a sample would poison the pixel forever, and keeping the rest of its round would
-    // weigh the other strata more than its own.
-    void add_round(int x, int y, std::span<const Rgb> samples, bool first_half) {
-        PixelSums& px = pixels_[size_t(y) * width_ + x];
+    // weigh the other strata more than its own. `aovs`, one per sample, are kept with the
+    // samples when the film has AOVs (and dropped with them).
+    void add_round(int x, int y, std::span<const Rgb> samples, bool first_half, std::span<const Aov> aovs = {}) {
+        const size_t i = size_t(y) * width_ + x;
+        PixelSums& px = pixels_[i];
         for (const Rgb& value : samples)
             if (!is_finite(value)) {
                 px.dropped += samples.size();
@@ -63,6 +79,7 @@ public:
             for (const Rgb& value : samples) px.half_sum += value;
         px.count += samples.size();
         if (first_half) px.half_count += samples.size();
+        if (!aovs.empty() && has_aovs()) add_aovs(aovs_[i], aovs, first_half);
     }
     // Adds a light-tracing splat to pixel (x, y); thread-safe. `value` is the light path's
     // contribution divided by the number of pixels, so that the splats of one light path per
@@ -79,12 +96,22 @@ public:
     const PixelSums& pixel(int x, int y) const { return pixels_[size_t(y) * width_ + x]; }
     std::vector<PixelSums>& pixels() { return pixels_; }
     const std::vector<PixelSums>& pixels() const { return pixels_; }
+    // One per pixel, as pixels(); empty without AOVs.
+    std::vector<AovSums>& aovs() { return aovs_; }
+    const std::vector<AovSums>& aovs() const { return aovs_; }
 
-    // Adds another film's sums (of other samples of the same image), pixel by pixel.
+    // Adds another film's sums (of other samples of the same image), pixel by pixel; AOV sums
+    // too if both have them (a fingerprint tells films with and without apart).
     void merge(const Film& other);
 
     // The mean of each pixel's samples (0 where it has none yet).
     Image mean() const;
+    // The mean of one AOV over each pixel's samples (or one half of them; 0 where there are
+    // none), depth in all three channels. An empty image if the film has no AOVs.
+    Image aov(AovLayer layer, AovHalf half = AovHalf::all) const;
+    Image albedo() const { return aov(AovLayer::albedo); }
+    Image normal() const { return aov(AovLayer::normal); }
+    Image depth() const { return aov(AovLayer::depth); }
     // Estimated RMSE of mean() against the converged image, in the image's own (linear) units:
     // sqrt of the average over pixels and channels of the variance of the pixel's mean, from
     // the difference of its two halves' means (plus the splats'). Infinite until every pixel
@@ -96,8 +123,11 @@ public:
     uint64_t dropped() const;
 
 private:
+    static void add_aovs(AovSums& sums, std::span<const Aov> aovs, bool first_half);
+
     int width_, height_;
     std::vector<PixelSums> pixels_;
+    std::vector<AovSums> aovs_;
 };
 
 }  // namespace glint

@@ -10,6 +10,7 @@
 #pragma once
 
 #include "scene/camera.h"
+#include "render/aov.h"
 #include "render/light_tracer.h"
 #include "base/rng.h"
 #include "render/sampler.h"
@@ -39,9 +40,10 @@ public:
     // Radiance arriving along the camera ray, estimated with random numbers from rng; `light`
     // is this sample's light path (empty when the scene has no light tracing); `first`, if
     // given, the numbers the path's first diffuse vertex uses instead of rng's; `direct` how
-    // the path treats what the camera sees through specular vertices only.
+    // the path treats what the camera sees through specular vertices only; `aov`, if given,
+    // receives the path's features (aov.h; where glass splits the path, the refracted branch's).
     Rgb radiance(Ray ray, Rng& rng, const LightPath& light = kNoLightPath, const FirstVertexSamples* first = nullptr,
-                 DirectView direct = DirectView::gathered) const;
+                 DirectView direct = DirectView::gathered, Aov* aov = nullptr) const;
 
 private:
     // Where a path is: its next ray, what it carries, the vertex it leaves and how it got there.
@@ -69,6 +71,7 @@ private:
         double caster_pdf = 0, caster_bsdf_pdf = 0;
         int caster_bounces = 0;
         DirectView direct_view = DirectView::gathered;
+        Aov* aov = nullptr;  // until the first diffuse vertex has filled it in
         bool seen_directly = true;  // no diffuse vertex yet: what the path finds belongs to the direct view
         // Whether light found now counts: the direct view's share depends on the path's part.
         bool counts_found_light() const { return !(seen_directly && direct_view == DirectView::left_out); }
@@ -76,9 +79,13 @@ private:
     // Glass met in the first kSplitDepth bounces is split: both the reflection and the
     // refraction are followed, each weighted by its Fresnel factor, where smallpt's random pick
     // makes the light's images in a glass ball speckle. Each level doubles the paths a camera
-    // ray may branch into: 2 keeps them at four.
+    // ray may branch into: 2 keeps them at four. The refraction carries on the path's AOVs: what
+    // lies behind glass, one deterministic branch, as a denoiser wants the features it sees.
     static constexpr int kSplitDepth = 2;
     Rgb trace(PathState path, Rng& rng, const LightPath& light) const;
+    // Fills in path.aov at a surface the path meets (hit at distance t along its ray), and lets
+    // go of it at the first diffuse vertex.
+    void note_aov(PathState& path, double t, const SurfaceInteraction& si, const Material& m, bool diffuse) const;
     // Moves the path on from si along bs (false: it ends there, by Russian roulette or a black
     // throughput).
     bool extend_path(PathState& path, const SurfaceInteraction& si, bool diffuse, const BsdfSample& bs, Rng& rng) const;

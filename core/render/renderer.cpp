@@ -24,7 +24,7 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
       settings_(settings),
       camera_(scene_->camera(), settings.width, settings.height),
       tracer_(*scene_, camera_),
-      film_(settings.window().width(), settings.window().height()),
+      film_(settings.window().width(), settings.window().height(), settings.aovs),
       light_tracer_(*scene_, tracer_.strategies(), camera_, settings.filter, settings.width, settings.height,
                     settings.window(), film_),
       direct_view_(*scene_, camera_, settings.filter, settings.width, settings.height, scene_->integrator().direct_view_rays),
@@ -62,7 +62,7 @@ RenderJob::CameraSample RenderJob::camera_sample(int x, int y, uint32_t index) c
     return c;
 }
 
-Rgb RenderJob::sample(int x, int y, uint32_t index) const {
+Rgb RenderJob::sample(int x, int y, uint32_t index, Aov* aov) const {
     const uint64_t pixel = uint64_t(y) * settings_.width + x;
     CameraSample c = camera_sample(x, y, index);
     Rng& rng = c.rng;
@@ -75,8 +75,8 @@ Rgb RenderJob::sample(int x, int y, uint32_t index) const {
         Rng light_rng = light_path_stream(settings_.seed, pixel, index);
         return light_tracer_.trace(light_rng);
     }() : LightPath{};
-    if (!direct_view_.splits(x, y)) return tracer_.radiance(ray, rng, light, first);
-    return tracer_.radiance(ray, rng, light, first, DirectView::left_out) + direct_view(x, y, index, sampler, rng);
+    if (!direct_view_.splits(x, y)) return tracer_.radiance(ray, rng, light, first, DirectView::gathered, aov);
+    return tracer_.radiance(ray, rng, light, first, DirectView::left_out, aov) + direct_view(x, y, index, sampler, rng);
 }
 
 Rgb RenderJob::direct_view(int x, int y, uint32_t index, const PixelSampler& sampler, Rng& rng) const {
@@ -107,6 +107,8 @@ bool RenderJob::render_tile(size_t tile, uint32_t first, uint32_t last) {
     // A round at a time: the film takes the error estimate's variance from whole rounds.
     const uint32_t round = samples_per_round(settings_.filter);
     std::array<Rgb, kMaxSamplesPerRound> values;
+    std::array<Aov, kMaxSamplesPerRound> aovs;
+    const size_t aov_count = settings_.aovs ? round : 0;
     for (int y = pixels.y0; y < pixels.y1; ++y)
         for (int x = pixels.x0; x < pixels.x1; ++x) {
             if (!window.contains(x, y)) {
@@ -114,9 +116,9 @@ bool RenderJob::render_tile(size_t tile, uint32_t first, uint32_t last) {
                 continue;
             }
             for (uint32_t s = first; s < last; s += round) {
-                for (uint32_t i = 0; i < round; ++i) values[i] = sample(x, y, s + i);
+                for (uint32_t i = 0; i < round; ++i) values[i] = sample(x, y, s + i, aov_count ? &aovs[i] : nullptr);
                 film_.add_round(x - window.x0, y - window.y0, std::span(values.data(), round),
-                                first_replicate(s, round));
+                                first_replicate(s, round), std::span(aovs.data(), aov_count));
             }
         }
     return true;
@@ -173,6 +175,9 @@ void RenderJob::resume(Film film, uint32_t spp_done) {
         throw std::invalid_argument("the checkpoint's film is " + std::to_string(film.width()) + "x" +
                                     std::to_string(film.height()) + ", the job's " + std::to_string(film_.width()) +
                                     "x" + std::to_string(film_.height()));
+    if (film.has_aovs() != settings_.aovs)
+        throw std::invalid_argument(std::string("the checkpoint's film ") + (film.has_aovs() ? "has" : "has no") +
+                                    " AOVs, the job " + (settings_.aovs ? "wants them" : "does not"));
     if (spp_done > settings_.spp || spp_done % samples_per_round(settings_.filter) != 0)
         throw std::invalid_argument("the checkpoint's " + std::to_string(spp_done) + " spp do not fit the job's " +
                                     std::to_string(settings_.spp));

@@ -80,7 +80,8 @@ private:
         const FirstVertexSamples* first() const { return sobol ? &stratified.first : nullptr; }
     };
     CameraSample camera_sample(int x, int y, uint32_t index) const;
-    Rgb sample(int x, int y, uint32_t index) const;
+    // Sample `index` of pixel (x, y); `aov`, if given, receives its AOVs.
+    Rgb sample(int x, int y, uint32_t index, Aov* aov) const;
     // The direct view of pixel (x, y) for sample `index` from direct_view_.rays() camera rays.
     Rgb direct_view(int x, int y, uint32_t index, const PixelSampler& sampler, Rng& rng) const;
     // A camera ray for sample `index` of pixel (x, y), through the film position `film` picks in

@@ -41,6 +41,9 @@ struct RenderSettings {
     Encoding encoding = Encoding::gamma22;
     double target_error = 0;  // stop once error_estimate() <= this; 0 = off
     double time_limit = 0;    // seconds; 0 = off
+    // Whether the film also averages the camera paths' AOVs (render/aov.h: albedo, normal,
+    // depth) for an EXR or a denoiser; off, they cost nothing.
+    bool aovs = false;
 
     bool whole_image() const { return region == Region{}; }
     // The pixels rendered: the region, or the whole image.

@@ -27,8 +27,8 @@ auto load_checked(F&& f) -> decltype(f()) {
     }
 }
 
-constexpr const char* kPresetFields[] = {"preset",     "width",        "height",   "spp",   "seed",
-                                         "time_limit", "target_error", "priority", "region"};
+constexpr const char* kPresetFields[] = {"preset",     "width",        "height",   "spp",    "seed",
+                                         "time_limit", "target_error", "priority", "region", "aovs"};
 
 void check_preset_fields(const nlohmann::json& request) {
     for (const auto& item : request.items()) {
@@ -47,6 +47,14 @@ std::optional<double> number(const nlohmann::json& request, const char* key) {
     const nlohmann::json& v = request.at(key);
     if (!v.is_number()) throw InvalidRequest("must be a number", key);
     return v.get<double>();
+}
+
+// The request's value of `key` if it has one: true or false.
+std::optional<bool> boolean(const nlohmann::json& request, const char* key) {
+    if (!request.contains(key)) return std::nullopt;
+    const nlohmann::json& v = request.at(key);
+    if (!v.is_boolean()) throw InvalidRequest("must be true or false", key);
+    return v.get<bool>();
 }
 
 // [x0, y0, x1, y1], as film.region in a scene.
@@ -84,6 +92,7 @@ FilmOverrides overrides_of(const nlohmann::json& request, const SceneLimits& lim
     o.time_limit = number(request, "time_limit");
     o.target_error = number(request, "target_error");
     o.region = region(request, limits);
+    o.aovs = boolean(request, "aovs");
     return o;
 }
 

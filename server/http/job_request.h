@@ -1,5 +1,5 @@
 // What POST /render and POST /jobs accept: a full scene, or {"preset": NAME} with overrides of
-// width, height, spp, seed, time_limit, target_error and region; either may give the job a
+// width, height, spp, seed, time_limit, target_error, region and aovs; either may give the job a
 // priority (top level). Errors are the service's (service/errors.h), with the JSON path they
 // are about; http/error_response.h gives each its status.
 #pragma once

@@ -206,7 +206,7 @@ bool Job::merge_parts(std::vector<PartFilm>& parts) {
     // Every part done: the ranges tile the job, and merge_partials adds them in the order glint
     // merge does, to the whole render's bytes. Before, a preview: the parts' sums so far, added
     // to an empty film (adding to zero is exact) without copying the parts.
-    Film merged(render_.film().width(), render_.film().height());
+    Film merged(render_.film().width(), render_.film().height(), render_.settings().aovs);
     if (all_done) {
         std::vector<Partial> films;
         for (PartFilm& part : parts) films.push_back(std::move(*part.film));

@@ -43,7 +43,7 @@ JobManager::~JobManager() {
 }
 
 std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene, const std::string& request, int priority) {
-    const uint64_t film_bytes = store_ ? partial_file_size(scene.settings.width, scene.settings.height) : 0;
+    const uint64_t film_bytes = store_ ? partial_file_size(scene.settings.width, scene.settings.height, scene.settings.aovs) : 0;
     if (store_ && film_bytes > store_->config().limit_bytes)
         throw InvalidRequest("the job's checkpoint (" + std::to_string(film_bytes) +
                              " bytes) would not fit in the store (limit " +

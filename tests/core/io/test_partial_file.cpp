@@ -153,9 +153,43 @@ TEST(Partial, ReadsVersionsTwoAndThreeWithoutHalves) {
         EXPECT_EQ(p.sampler_version, 1u);
         EXPECT_TRUE(std::isinf(p.film.error_estimate()));
     }
-    std::vector<uint8_t> v5 = old_version_file(3);
-    put(v5, 8, uint32_t(5));
-    EXPECT_EQ(decode_error(with_checksum(v5)), "unsupported partial file version 5");
+    std::vector<uint8_t> v6 = old_version_file(3);
+    put(v6, 8, uint32_t(6));
+    EXPECT_EQ(decode_error(with_checksum(v6)), "unsupported partial file version 6");
+}
+
+// Version 4 is version 5 without the flags (and so without AOVs).
+TEST(Partial, ReadsVersionFourAndRefusesUnknownFlags) {
+    LoadedScene s = testing::small_cornell();
+    s.settings.spp = 4;
+    const std::vector<uint8_t> v5 = render_part(s, 0, 4);
+    std::vector<uint8_t> v4 = v5;
+    v4.erase(v4.begin() + 44, v4.begin() + 48);
+    put(v4, 8, uint32_t(4));
+    const Partial p = decode_partial(with_checksum(v4));
+    EXPECT_FALSE(p.film.has_aovs());
+    EXPECT_EQ(encode_partial(p), v5);
+    std::vector<uint8_t> flags = v5;
+    put(flags, 44, uint32_t(2));
+    EXPECT_EQ(decode_error(with_checksum(flags)), "unknown flags 2");
+}
+
+// With AOVs: their sums survive the file bit for bit, and parts merge into the whole render's
+// AOV images (after rounding to float, as the image's).
+TEST(Partial, AovsRoundTripAndMergeIntoTheWholeRender) {
+    LoadedScene s = testing::small_cornell(16);
+    s.settings.aovs = true;
+    const auto whole = testing::render(s);
+    const std::vector<uint8_t> bytes = encode_partial(partial_of(*whole, fingerprint(*s.scene, s.settings), 16));
+    EXPECT_EQ(bytes.size(), partial_file_size(40, 30, true));
+    const Partial read = decode_partial(bytes);
+    ASSERT_TRUE(read.film.has_aovs());
+    EXPECT_EQ(std::memcmp(read.film.aovs().data(), whole->film().aovs().data(), sizeof(AovSums) * 40 * 30), 0);
+    EXPECT_EQ(encode_partial(read), bytes);
+    const Partial merged = merge_partials({decode_partial(render_part(s, 8, 16)), decode_partial(render_part(s, 0, 8))});
+    for (AovLayer layer : {AovLayer::albedo, AovLayer::normal, AovLayer::depth})
+        for (AovHalf half : {AovHalf::all, AovHalf::first, AovHalf::second})
+            EXPECT_EQ(encode_pfm(merged.film.aov(layer, half)), encode_pfm(whole->film().aov(layer, half)));
 }
 
 TEST(Partial, PartsOfAnotherSamplerVersionDoNotMerge) {
@@ -181,6 +215,9 @@ TEST(Partial, FingerprintsDependOnWhatDecidesPixels) {
     settings.first_sample = 400;
     settings.encoding = Encoding::srgb;
     EXPECT_EQ(fingerprint(*s.scene, settings), base);  // parts differ in these
+    settings.aovs = true;  // films with and without AOVs never merge
+    EXPECT_NE(fingerprint(*s.scene, settings), base);
+    settings.aovs = false;
     settings.width += 1;
     EXPECT_NE(fingerprint(*s.scene, settings), base);
     EXPECT_NE(fingerprint(*load_scene(GLINT_SCENES_DIR "/caustic.json").scene, s.settings), base);

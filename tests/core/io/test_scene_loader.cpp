@@ -89,6 +89,8 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
     EXPECT_EQ(error_of(R"({"film": {"width": 16384, "height": 16384}})"),
               "film: image of 268435456 pixels exceeds the limit of 16777216");
     EXPECT_EQ(error_of(R"({"film": {"spp": 99999999}})"), "film.spp: must be in [1, 1048576]");
+    EXPECT_EQ(error_of(R"({"film": {"aovs": 1}})"), "film.aovs: must be true or false");
+    EXPECT_EQ(error_of(R"({"film": {"aovs": true}})"), "no error");
     EXPECT_EQ(error_of(R"({"camera": {"direction": [0, 0, 0]}})"), "camera.direction: must not be zero");
     EXPECT_EQ(error_of(R"({"camera": {"look_at": [0, 0, 0]}})"), "camera.look_at: must differ from position");
     EXPECT_EQ(error_of(R"({"camera": {"direction": [1e-200, -1e-200, 0]}})"), "no error");  // tiny, not zero

@@ -91,6 +91,32 @@ TEST(Film, SplatsAddExactlyInAnyOrderAndDivideByTheSamplesPerPixel) {
     EXPECT_EQ(encode_pfm(image), encode_pfm(backward.mean()));
 }
 
+// AOVs are averaged over the samples the image keeps: a round dropped for a NaN takes its AOVs
+// along, and the halves' means come from the rounds of each half.
+TEST(Film, ADroppedRoundDropsItsAovs) {
+    Film film(1, 1, true);
+    const Aov a{Rgb{0.5}, Vec3{0, 0, 1}, 2}, b{Rgb{0.25}, Vec3{0, 1, 0}, 4}, odd{Rgb{1}, Vec3{1, 0, 0}, 100};
+    const std::vector<Aov> first{a, a}, second{b, b}, dropped{odd, odd};
+    film.add_round(0, 0, std::vector<Rgb>{Rgb{1}, Rgb{1}}, true, first);
+    film.add_round(0, 0, std::vector<Rgb>{Rgb{1}, Rgb{kNaN}}, false, dropped);
+    film.add_round(0, 0, std::vector<Rgb>{Rgb{1}, Rgb{1}}, false, second);
+    EXPECT_EQ(film.albedo().at(0, 0), Rgb{0.375});
+    EXPECT_EQ(film.normal().at(0, 0), (Vec3{0, 0.5, 0.5}));
+    EXPECT_EQ(film.depth().at(0, 0), Rgb{3});
+    EXPECT_EQ(film.aov(AovLayer::depth, AovHalf::first).at(0, 0), Rgb{2});
+    EXPECT_EQ(film.aov(AovLayer::albedo, AovHalf::second).at(0, 0), Rgb{0.25});
+    // Merged from two films of one round each, the same.
+    Film one(1, 1, true), other(1, 1, true);
+    one.add_round(0, 0, std::vector<Rgb>{Rgb{1}, Rgb{1}}, true, first);
+    other.add_round(0, 0, std::vector<Rgb>{Rgb{1}, Rgb{1}}, false, second);
+    one.merge(other);
+    EXPECT_EQ(encode_pfm(one.normal()), encode_pfm(film.normal()));
+    // A film without AOVs keeps none, whatever it is given.
+    Film plain(1, 1);
+    plain.add_round(0, 0, std::vector<Rgb>{Rgb{1}, Rgb{1}}, true, first);
+    EXPECT_TRUE(plain.aovs().empty());
+}
+
 TEST(Film, NonFiniteSplatsAreDroppedAndCounted) {
     Film film(1, 1);
     film.splat(0, 0, Rgb{kInf, 0, 0});

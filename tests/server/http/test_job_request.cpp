@@ -37,6 +37,19 @@ TEST(JobRequest, ANulByteOrTrailingBytesAreMalformedAtTheirOffset) {
               "'4} g'; expected end of input");
 }
 
+TEST(JobRequest, APresetAsksForAovsWithABoolean) {
+    EXPECT_FALSE(parse_job_request(kPreset, GLINT_SCENES_DIR, ServiceConfig{}.scene).scene.settings.aovs);
+    const std::string with = R"({"preset": "cornell", "width": 16, "height": 12, "spp": 4, "aovs": true})";
+    EXPECT_TRUE(parse_job_request(with, GLINT_SCENES_DIR, ServiceConfig{}.scene).scene.settings.aovs);
+    try {
+        parse_job_request(R"({"preset": "cornell", "aovs": "yes"})", GLINT_SCENES_DIR, ServiceConfig{}.scene);
+        FAIL() << "accepted";
+    } catch (const InvalidRequest& e) {
+        EXPECT_EQ(e.path(), "aovs");
+        EXPECT_EQ(std::string(e.what()), "must be true or false");
+    }
+}
+
 TEST(JobRequest, EveryMalformedBodyNamesItsByte) {
     EXPECT_EQ(outcome_of(R"({"preset": )"),
               "malformed: malformed JSON at byte 12: syntax error while parsing value - unexpected end of input; "
