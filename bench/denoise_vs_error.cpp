@@ -5,7 +5,7 @@
 // while it runs: the machine is shared) and its wall time. One CSV row per rung, for
 // bench/plot_denoise.py (columns: scene, width, height, spp, render CPU s so far, RMSE and relMSE
 // of the unbiased image, of the denoised one, the denoiser's CPU s and wall s); the images of
-// one rung are written as PNGs to look at.
+// one rung are written as PNGs to look at, and as PFMs.
 #include <CLI/CLI.hpp>
 #include <sys/resource.h>
 
@@ -30,6 +30,8 @@ struct Options {
     int width = 256, height = 192;
     unsigned threads = 2;
     uint32_t reference_spp = 4096, max_spp = 1024, png_spp = 16;
+    DenoiserConfig config;  // the defaults unless options change them
+    bool colour_only = false;
 };
 
 double cpu_seconds() {
@@ -54,7 +56,7 @@ void measure(const Options& o, const RenderJob& job, uint32_t spp, double render
              ThreadPool& pool) {
     const double cpu0 = cpu_seconds();
     const auto wall0 = std::chrono::steady_clock::now();
-    const Image denoised = denoise(job.film(), DenoiserConfig{}, pool);
+    const Image denoised = denoise(job.film(), o.config, pool);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     const double cpu = cpu_seconds() - cpu0;
     const Image image = job.film().mean();
@@ -66,6 +68,8 @@ void measure(const Options& o, const RenderJob& job, uint32_t spp, double render
     const std::string stem = (fs::path(o.out) / (name + "-" + std::to_string(spp) + "spp")).string();
     write_file(stem + ".png", encode_png(image, job.settings().encoding));
     write_file(stem + ".denoised.png", encode_png(denoised, job.settings().encoding));
+    write_file(stem + ".pfm", encode_pfm(image));
+    write_file(stem + ".denoised.pfm", encode_pfm(denoised));
 }
 
 }  // namespace
@@ -81,6 +85,11 @@ int main(int argc, char** argv) {
     app.add_option("--reference-spp", o.reference_spp);
     app.add_option("--max-spp", o.max_spp, "Top of the ladder (doubling from one round)");
     app.add_option("--png-spp", o.png_spp, "The rung whose images are written as PNGs");
+    app.add_option("--window-radius", o.config.window_radius);
+    app.add_option("--patch-radius", o.config.patch_radius);
+    app.add_option("--variance-cancel", o.config.variance_cancel);
+    app.add_option("--selection-radius", o.config.selection_radius);
+    app.add_flag("--colour-only", o.colour_only, "Render without AOVs: the denoiser compares colours only");
     CLI11_PARSE(app, argc, argv);
     fs::create_directories(o.out);
     LoadedScene loaded = load_scene(o.scene);
@@ -88,6 +97,7 @@ int main(int argc, char** argv) {
     loaded.settings.height = o.height;
     const Image ref = reference_image(loaded, o.out, o.reference_spp, o.threads);
     loaded.settings.spp = o.max_spp;
+    loaded.settings.aovs = !o.colour_only;
     ThreadPool pool(o.threads);
     RenderJob job(loaded.scene, loaded.settings);
     const uint32_t round = samples_per_round(loaded.settings.filter);

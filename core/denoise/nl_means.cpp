@@ -15,10 +15,10 @@ struct Offset {
     int dx, dy;
 };
 
-// The weight sums of one band of rows, per strength: Σw and Σw·value per channel.
+// The weight sums of one band of rows, per candidate: Σw and Σw·value per channel.
 struct BandSums {
     std::vector<std::array<std::vector<double>, 4>> sums;
-    BandSums(size_t strengths, size_t pixels) : sums(strengths) {
+    BandSums(size_t candidates, size_t pixels) : sums(candidates) {
         for (auto& s : sums)
             for (auto& plane : s) plane.assign(pixels, 0.0);
     }
@@ -50,6 +50,29 @@ void patch_terms(const NlMeansInput& in, const DenoiserConfig& config, Offset o,
     variance = box_filter(variance, w, y1 - y0, config.patch_radius);
 }
 
+// The largest over the feature planes of their squared difference between pixels p and q, less
+// what noise explains, in units of their variance (at least the config's floor).
+float feature_distance(const NlMeansInput& in, float floor, size_t p, size_t q) {
+    float worst = 0;
+    for (size_t j = 0; j < in.features->size(); ++j) {
+        const std::vector<float>& f = (*in.features)[j];
+        const std::vector<float>& v = (*in.feature_variance)[j];
+        const float d = f[p] - f[q];
+        worst = std::max(worst, (d * d - (v[p] + std::min(v[p], v[q]))) / std::max(floor, v[p] + v[q]));
+    }
+    return worst;
+}
+
+// A candidate's weight: the lesser of the colour and the feature weights it uses.
+double candidate_weight(const DenoiserConfig::Candidate& k, float colour_distance, float colour_variance,
+                        float feature) {
+    double weight = 1;
+    if (k.colour > 0)
+        weight = std::exp(-double(std::max(0.0f, colour_distance) / (k.colour * k.colour * colour_variance + 1e-20f)));
+    if (k.feature > 0) weight = std::min(weight, std::exp(-double(feature / (k.feature * k.feature))));
+    return weight;
+}
+
 // Adds neighbour offset o's weighted values to the band [y0, y1)'s sums.
 void add_offset(const NlMeansInput& in, const DenoiserConfig& config, Offset o, int y0, int y1,
                 BandSums& band) {
@@ -61,11 +84,10 @@ void add_offset(const NlMeansInput& in, const DenoiserConfig& config, Offset o, 
         for (int x = std::max(0, -o.dx); x < std::min(w, w - o.dx); ++x) {
             const size_t q = size_t(y + o.dy) * w + x + o.dx, i = size_t(y - ey0) * w + x;
             if ((*in.variance)[q] >= kUnknownVariance) continue;
-            const size_t out = size_t(y - y0) * w + x;
-            for (size_t k = 0; k < config.strengths.size(); ++k) {
-                const float k2 = config.strengths[k] * config.strengths[k];
-                const float d2 = std::max(0.0f, distance[i]) / (k2 * variance[i] + 1e-20f);
-                const double weight = std::exp(-double(d2));
+            const size_t out = size_t(y - y0) * w + x, p = size_t(y) * w + x;
+            const float feature = in.features ? feature_distance(in, config.feature_floor, p, q) : 0;
+            for (size_t k = 0; k < config.candidates.size(); ++k) {
+                const double weight = candidate_weight(config.candidates[k], distance[i], variance[i], feature);
                 auto& sums = band.sums[k];
                 sums[3][out] += weight;
                 for (int c = 0; c < 3; ++c) sums[c][out] += weight * (*in.image)[c][q];
@@ -83,24 +105,22 @@ void finish_band(const NlMeansInput& in, int y0, int y1, const BandSums& band, N
             const bool known = (*in.variance)[p] < kUnknownVariance && sums[3][i] > 0;
             for (int c = 0; c < 3; ++c)
                 out.filtered[k][c][p] = known ? float(sums[c][i] / sums[3][i]) : (*in.image)[c][p];
-            out.self_weight[k][p] = known ? float(1.0 / sums[3][i]) : 1.0f;
         }
 }
 
 }  // namespace
 
 NlMeansOutput nl_means(const NlMeansInput& in, const DenoiserConfig& config, ThreadPool& pool) {
-    const size_t pixels = size_t(in.width) * in.height, strengths = config.strengths.size();
+    const size_t pixels = size_t(in.width) * in.height, candidates = config.candidates.size();
     NlMeansOutput out;
-    out.filtered.resize(strengths);
+    out.filtered.resize(candidates);
     for (Planes& planes : out.filtered)
         for (auto& plane : planes) plane.resize(pixels);
-    out.self_weight.assign(strengths, std::vector<float>(pixels));
     const int r = config.window_radius;
     const size_t bands = size_t(in.height + kBandRows - 1) / kBandRows;
     pool.parallel_for(bands, [&](size_t band_index) {
         const int y0 = int(band_index) * kBandRows, y1 = std::min(in.height, y0 + kBandRows);
-        BandSums band(strengths, size_t(y1 - y0) * in.width);
+        BandSums band(candidates, size_t(y1 - y0) * in.width);
         for (int dy = -r; dy <= r; ++dy)
             for (int dx = -r; dx <= r; ++dx) add_offset(in, config, {dx, dy}, y0, y1, band);
         finish_band(in, y0, y1, band, out);

@@ -135,6 +135,7 @@ int render_scene(const RenderOptions& o, const std::string& scene, const Outputs
     try {
         loaded = load_scene(scene, {}, o.meshes);
         apply_film_overrides(film_overrides(o), loaded.settings, SceneLimits{});
+        loaded.settings.aovs |= o.denoise;  // the denoiser's features
     } catch (const SceneError& e) {
         std::fprintf(stderr, "glint: %s: %s\n", scene.c_str(), e.what());
         return 1;
