@@ -43,6 +43,22 @@ def plot(rows, out):
     fig.savefig(out)
 
 
+def montage(folder, out, scenes=("caustic", "cornell", "mesh")):
+    """The 16 spp rung, unbiased and denoised, beside the reference: the caustic under the glass
+    ball, the mirror ball's reflections, the torus knot's edges."""
+    import matplotlib.image as mpimg
+    fig, axes = plt.subplots(len(scenes), 3, figsize=(12, 2.4 * len(scenes)), squeeze=False)
+    for r, scene in enumerate(scenes):
+        for c, (name, title) in enumerate([(f"{scene}-16spp.png", "16 spp unbiased"),
+                                           (f"{scene}-16spp.denoised.png", "16 spp denoised"),
+                                           ("reference.png", "reference")]):
+            axes[r][c].imshow(mpimg.imread(f"{folder}/{scene}/{name}"), interpolation="nearest")
+            axes[r][c].set_title(f"{scene}: {title}", fontsize=8)
+            axes[r][c].axis("off")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
 def table(rows):
     print("| scene | spp | render CPU s | RMSE unbiased | RMSE denoised | relMSE unbiased | relMSE denoised | relMSE ratio | denoiser CPU s |")
     print("|---|---|---|---|---|---|---|---|---|")
@@ -56,4 +72,5 @@ def table(rows):
 if __name__ == "__main__":
     data = load(sys.argv[1] if len(sys.argv) > 1 else "bench/results/denoise.csv")
     plot(data, "bench/plots/denoise.svg")
+    montage("bench/out/denoise", "bench/plots/denoise_16spp.png")
     table(data)

@@ -26,7 +26,7 @@ struct JobSnapshot {
     Progress progress;
     std::shared_ptr<const std::vector<uint8_t>> png;  // null until the first pass
     std::shared_ptr<const Image> image;               // the linear mean image of that frame
-    // What the denoiser reads of that frame's film (null for the first preview): 44 bytes a
+    // What the denoiser reads of that frame's film (null for the first preview): 52 bytes a
     // pixel, so that a denoised preview can be made on request while the film goes on changing.
     std::shared_ptr<const HalfBuffers> halves;
     std::string error;                                // why a failed job failed

@@ -21,6 +21,15 @@ using testing::decode_png;
 using testing::Decoded;
 using testing::kSmallCornell;
 
+// The scene of kSmallCornell, as the library loads it.
+LoadedScene small_cornell() {
+    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    s.settings.width = 40;
+    s.settings.height = 30;
+    s.settings.spp = 16;
+    return s;
+}
+
 TEST_F(Server, HealthAndPresets) {
     EXPECT_EQ(get_json("/health")["status"], "ok");
     const json presets = get_json("/presets");
@@ -37,11 +46,7 @@ TEST_F(Server, RenderReturnsTheSamePngAsTheLibrary) {
     ASSERT_TRUE(res);
     ASSERT_EQ(res->status, 200);
     EXPECT_EQ(res->get_header_value("Content-Type"), "image/png");
-    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
-    s.settings.width = 40;
-    s.settings.height = 30;
-    s.settings.spp = 16;
-    const auto job = testing::render(s);
+    const auto job = testing::render(small_cornell());
     const std::vector<uint8_t> expected = encode_png(job->film().mean(), Encoding::gamma22);
     EXPECT_EQ(res->body, std::string(expected.begin(), expected.end()));
 }
@@ -74,12 +79,9 @@ TEST_F(Server, ServesTheDenoisedPreviewBesideTheUnbiasedImage) {
     ASSERT_TRUE(res);
     ASSERT_EQ(res->status, 200);
     EXPECT_EQ(res->get_header_value("Content-Type"), "image/png");
-    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
-    s.settings.width = 40;
-    s.settings.height = 30;
-    s.settings.spp = 16;
     ThreadPool pool(1);
-    const std::vector<uint8_t> expected = encode_png(denoise(testing::render(s)->film(), DenoiserConfig{}, pool), Encoding::gamma22);
+    const auto job = testing::render(small_cornell());
+    const std::vector<uint8_t> expected = encode_png(denoise(job->film(), DenoiserConfig{}, pool), Encoding::gamma22);
     EXPECT_EQ(res->body, std::string(expected.begin(), expected.end()));
     EXPECT_NE(res->body, client_->Get(("/jobs/" + id + "/image.png").c_str())->body);  // the PNG stays unbiased
     EXPECT_EQ(client_->Get("/jobs/nope/image.denoised.png")->status, 404);
