@@ -1,5 +1,7 @@
 #include "denoise/denoiser.h"
 
+#include <cmath>
+
 #include "denoise/box_filter.h"
 #include "denoise/nl_means.h"
 
