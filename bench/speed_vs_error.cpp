@@ -21,6 +21,7 @@
 #include "io/image_io.h"
 #include "render/renderer.h"
 #include "io/scene_loader.h"
+#include "reference_image.h"
 
 using namespace glint;
 namespace fs = std::filesystem;
@@ -48,29 +49,6 @@ LoadedScene load_mode(const Options& o, const std::string& mode) {
     loaded.settings.width = o.width;
     loaded.settings.height = o.height;
     return loaded;
-}
-
-// The reference is rendered once per scene and size and kept in the output folder, with its own
-// error estimate beside it (FILE.estimate), so that a reader can take the reference's noise out
-// of an RMSE measured against it: for independent unbiased images, E[RMSE²] against the
-// reference is the render's MSE plus the reference's.
-Image reference(const Options& o) {
-    const fs::path file = fs::path(o.out) / ("reference-" + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                                             "-" + std::to_string(o.reference_spp) + "spp.pfm");
-    if (fs::exists(file)) return decode_pfm(read_file(file.string(), size_t(1) << 30));
-    LoadedScene loaded = load_mode(o, "glint");
-    loaded.settings.spp = o.reference_spp;
-    loaded.settings.seed = 0x5EED;  // independent of the ladder's seed
-    ThreadPool pool(o.threads);
-    RenderJob job(loaded.scene, loaded.settings);
-    std::fprintf(stderr, "rendering reference %s at %u spp...\n", file.c_str(), o.reference_spp);
-    job.run(pool);
-    std::fprintf(stderr, "reference done in %.0f s, its own estimated RMSE %.4g\n", job.progress().seconds,
-                 job.film().error_estimate());
-    write_file(file.string(), encode_pfm(job.film().mean()));
-    const std::string estimate = std::to_string(job.film().error_estimate()) + "\n";
-    write_file(file.string() + ".estimate", std::vector<uint8_t>(estimate.begin(), estimate.end()));
-    return job.film().mean();
 }
 
 void ladder(const Options& o, const std::string& mode, const Image& ref) {
@@ -107,7 +85,7 @@ int main(int argc, char** argv) {
     app.add_option("--max-seconds", o.max_seconds, "Stop a mode's ladder once it has run this long");
     CLI11_PARSE(app, argc, argv);
     fs::create_directories(o.out);
-    const Image ref = reference(o);
+    const Image ref = reference_image(load_mode(o, "glint"), o.out, o.reference_spp, o.threads);
     std::stringstream modes(o.modes);
     for (std::string mode; std::getline(modes, mode, ',');) ladder(o, mode, ref);
 }

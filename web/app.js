@@ -9,7 +9,7 @@ const ui = {
   spp: $("spp"), sppLabel: $("spp-label"), timeLimit: $("time-limit"), targetError: $("target-error"),
   priority: $("priority"), render: $("render"), cancel: $("cancel"),
   image: $("image"), viewport: $("viewport"), regionMode: $("region-mode"), regionBox: $("region-box"),
-  samplesView: $("samples-view"),
+  samplesView: $("samples-view"), denoised: $("denoised"),
   plot: $("error-plot"), png: $("download-png"), pfm: $("download-pfm"),
   jobList: $("job-list"), jobCount: $("job-count"), jobsError: $("jobs-error"),
 };
@@ -127,6 +127,7 @@ function showJob(status) {
   if (shown?.events) shown.events.close();
   shown = { id: status.id, status, events: null };
   errorHistory = [];
+  denoisedFrame = 0;
   rememberShown(status.id);
   ui.png.href = withToken(status.urls.png);
   ui.pfm.href = withToken(status.urls.pfm);
@@ -141,7 +142,7 @@ function showJob(status) {
 function watch(status) {
   const events = new EventSource(withToken(status.urls.events));
   shown.events = events;
-  ui.image.src = withToken(status.urls.stream);
+  showImage(status);
   setRunning(true);
   events.addEventListener("progress", (e) => showFigures(JSON.parse(e.data)));
   events.addEventListener("done", (e) => finish(events, JSON.parse(e.data)));
@@ -151,6 +152,7 @@ function watch(status) {
 // The job's last frame as a plain PNG (also when the stream was cut short); none before the first.
 function showFinalImage(status) {
   if (samplesView && status.urls.samples && status.frame > 0) showSamples(status);
+  else if (denoisedShown()) showImage(status);
   else if (status.frame > 0) ui.image.src = withToken(`${status.urls.png}?final=${status.frame}`);
   else ui.image.removeAttribute("src");
 }
@@ -163,6 +165,7 @@ function showSamples(status) {
 function toggleSamplesView() {
   samplesView = !samplesView;
   ui.samplesView.setAttribute("aria-pressed", String(samplesView));
+  if (samplesView) ui.denoised.setAttribute("aria-pressed", "false");  // one view in place of the image
   if (!shown) return;
   if (shown.events && !samplesView) ui.image.src = withToken(shown.status.urls.stream);
   else showFinalImage(shown.status);
@@ -248,6 +251,7 @@ function showFigures(s) {
   ui.png.classList.toggle("disabled", !enabled);
   ui.pfm.classList.toggle("disabled", !enabled);
   if (s.error_estimate > 0 && s.elapsed > 0) errorHistory.push([s.elapsed, s.error_estimate]);
+  if (denoisedShown() && shown?.id === s.id) showImage(s);
   drawPlot(s.target_error > 0 ? s.target_error : null);
 }
 
@@ -258,6 +262,7 @@ ui.cancel.addEventListener("click", cancelRender);
 ui.image.addEventListener("load", applyZoom);
 ui.regionMode.addEventListener("click", toggleRegionMode);
 ui.samplesView.addEventListener("click", toggleSamplesView);
+ui.denoised.addEventListener("click", toggleDenoised);
 for (const b of document.querySelectorAll("button.zoom")) b.addEventListener("click", () => setZoom(Number(b.dataset.zoom)));
 document.addEventListener("visibilitychange", () => { if (!document.hidden) pollJobs(); });
 enableDragging();

@@ -21,6 +21,35 @@ function toggleRegionMode() {
 }
 const regionMode = () => ui.regionMode.getAttribute("aria-pressed") === "true";
 
+// "Denoised" shows the shown job's latest frame denoised (image.denoised.png, made by the server
+// on request) in place of the unbiased image; off, the unbiased stream or PNG comes back.
+function toggleDenoised() {
+  const on = !denoisedShown();
+  ui.denoised.setAttribute("aria-pressed", String(on));
+  if (on && samplesView) {  // one view in place of the image
+    samplesView = false;
+    ui.samplesView.setAttribute("aria-pressed", "false");
+  }
+  denoisedFrame = 0;
+  if (shown) showImage(shown.status);
+}
+const denoisedShown = () => ui.denoised.getAttribute("aria-pressed") === "true";
+let denoisedFrame = 0;  // the frame whose denoised image is shown or loading
+
+// The shown job's image: live, the multipart stream; ended, its last PNG; with "Denoised" on,
+// the denoised frame, asked for again when a newer frame exists and the last request has ended
+// (making one takes the server a while: requests never pile up).
+function showImage(status) {
+  if (!denoisedShown()) {
+    if (shown?.events) ui.image.src = withToken(status.urls.stream);
+    else showFinalImage(status);
+    return;
+  }
+  if (status.frame === 0 || status.frame === denoisedFrame || (denoisedFrame && !ui.image.complete)) return;
+  denoisedFrame = status.frame;
+  ui.image.src = withToken(`${status.urls.denoised}?frame=${status.frame}`);
+}
+
 // The image pixel under a pointer, in the shown image's pixels (fractional; may lie outside).
 // The bounding box already holds the zoom, the scroll and the centring.
 function imagePoint(e) {

@@ -85,9 +85,10 @@ std::vector<ExrLayer> film_layers(const Film& film) {
     return layers;
 }
 
-std::vector<uint8_t> encode_film_exr(const Image& image, const Film& film) {
+std::vector<uint8_t> encode_film_exr(const Image& image, const Film& film, std::vector<ExrLayer> extra) {
     std::vector<ExrLayer> layers = film_layers(film);
     layers.insert(layers.begin(), exr_layer("", image));
+    for (ExrLayer& layer : extra) layers.push_back(std::move(layer));
     return encode_exr(image.width, image.height, layers);
 }
 

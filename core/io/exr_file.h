@@ -29,8 +29,9 @@ ExrLayer exr_layer(std::string name, const Image& image, std::vector<std::string
 // samples in both halves), and the AOVs' means if it has them (albedo.R/G/B, N.X/Y/Z, Z).
 std::vector<ExrLayer> film_layers(const Film& film);
 
-// An EXR of a film: `image` (its mean, as R, G, B) and film_layers(film).
-std::vector<uint8_t> encode_film_exr(const Image& image, const Film& film);
+// An EXR of a film: `image` (its mean, as R, G, B), film_layers(film), then `extra` (such as the
+// denoised preview).
+std::vector<uint8_t> encode_film_exr(const Image& image, const Film& film, std::vector<ExrLayer> extra = {});
 
 // The file's bytes; throws std::invalid_argument if a plane is not width·height values or two
 // channels have one name, and std::runtime_error if OpenEXR cannot write it.

@@ -15,6 +15,7 @@
 #include "cli/option_range.h"
 #include "cli/progress_bar.h"
 #include "io/exr_file.h"
+#include "denoise/denoiser.h"
 #include "io/film_overrides.h"
 #include "io/fingerprint.h"
 #include "io/partial_file.h"
@@ -36,12 +37,19 @@ struct RenderOptions {
     std::optional<double> target_error, time_limit, adaptive_threshold;
     std::optional<uint32_t> adaptive_min_spp;
     std::vector<int> region;  // x0, y0, x1, y1, when given
+    bool denoise = false;
 };
 
 // Where one scene's results go.
 struct Outputs {
     std::string png, hdr, exr, partial, checkpoint;
+    std::string denoised;  // OUT.denoised.png beside the PNG, with --denoise
 };
+
+// "out.png" -> "out.denoised.png": the denoised preview beside the unbiased image.
+std::string denoised_path(const std::string& png, bool denoise) {
+    return denoise ? std::filesystem::path(png).replace_extension(".denoised.png").string() : "";
+}
 
 RenderJob* g_interruptible = nullptr;
 
@@ -81,11 +89,17 @@ FilmOverrides film_overrides(const RenderOptions& o) {
 }
 
 // `print` is the fingerprint of the scene and settings (needed only for a partial file).
-void write_outputs(const RenderJob& job, uint64_t print, const Outputs& out) {
+void write_outputs(const RenderJob& job, uint64_t print, const Outputs& out, ThreadPool& pool) {
     const Image image = job.film().mean();
     if (!out.png.empty()) write_file(out.png, encode_png(image, job.settings().encoding));
+    std::vector<ExrLayer> extra;
+    if (!out.denoised.empty()) {
+        const Image denoised = denoise(job.film(), DenoiserConfig{}, pool);
+        write_file(out.denoised, encode_png(denoised, job.settings().encoding));
+        extra.push_back(exr_layer("denoised", denoised));
+    }
     if (!out.hdr.empty()) write_file(out.hdr, encode_pfm(image));
-    if (!out.exr.empty()) write_file(out.exr, encode_film_exr(image, job.film()));
+    if (!out.exr.empty()) write_file(out.exr, encode_film_exr(image, job.film(), std::move(extra)));
     if (!out.partial.empty()) write_file(out.partial, encode_partial(partial_of(job, print, job.progress().spp_done)));
 }
 
@@ -133,6 +147,7 @@ int render_scene(const RenderOptions& o, const std::string& scene, const Outputs
     try {
         loaded = load_scene(scene, {}, o.meshes);
         apply_film_overrides(film_overrides(o), loaded.settings, SceneLimits{});
+        loaded.settings.aovs |= o.denoise;  // the denoiser's features
     } catch (const SceneError& e) {
         std::fprintf(stderr, "glint: %s: %s\n", scene.c_str(), e.what());
         return 1;
@@ -162,7 +177,7 @@ int render_scene(const RenderOptions& o, const std::string& scene, const Outputs
     bar.finish();
     g_interruptible = nullptr;
     try {
-        write_outputs(job, print, out);
+        write_outputs(job, print, out, pool);
         if (reason == StopReason::completed) checkpoint.remove();
     } catch (const std::exception& e) {
         std::fprintf(stderr, "glint: %s\n", e.what());
@@ -200,7 +215,8 @@ int render_batch(const RenderOptions& o, ThreadPool& pool) {
     int failed = 0;
     for (const auto& scene : scenes) {
         const std::string stem = scene.stem().string();
-        Outputs out{in(o.output, stem + ".png"), in(o.hdr, stem + ".pfm"), in(o.exr, stem + ".exr"), "", ""};
+        const std::string png = in(o.output, stem + ".png");
+        Outputs out{png, in(o.hdr, stem + ".pfm"), in(o.exr, stem + ".exr"), "", "", denoised_path(png, o.denoise)};
         const int status = render_scene(o, scene.string(), out, pool);
         if (status == 130) return 130;
         failed += status != 0;
@@ -224,8 +240,14 @@ int run_render(const RenderOptions& o) {
         std::fprintf(stderr, "glint: give -o (a PNG, or a folder for several scenes), --exr or --partial\n");
         return 2;
     }
+    if (o.denoise && o.output.empty()) {
+        std::fprintf(stderr, "glint: --denoise writes OUT.denoised.png beside the PNG: give -o\n");
+        return 2;
+    }
     if (batch) return render_batch(o, pool);
-    return render_scene(o, o.scenes.front(), Outputs{o.output, o.hdr, o.exr, o.partial, o.checkpoint}, pool);
+    return render_scene(o, o.scenes.front(),
+                        Outputs{o.output, o.hdr, o.exr, o.partial, o.checkpoint, denoised_path(o.output, o.denoise)},
+                        pool);
 }
 
 }  // namespace
@@ -242,6 +264,8 @@ std::function<int()> add_render_command(CLI::App& app) {
     cmd->add_flag("--aovs", o->aovs, "Keep the AOVs (albedo, normal, depth) in the film and its partial files (film.aovs)");
     cmd->add_option("--samples", o->samples, "Render only samples A..B-1 of every pixel (A:B), for --partial");
     cmd->add_option("--partial", o->partial, "Write the per-pixel sums to this file, for glint merge");
+    cmd->add_flag("--denoise", o->denoise,
+                  "Also write OUT.denoised.png, a denoised preview (docs/denoiser.md); OUT stays the unbiased image");
     cmd->add_option("--scenes", o->meshes, "Folder the scene's mesh files are read from (default: the scene file's)");
     cmd->add_option("--checkpoint", o->checkpoint,
                     "Keep the film in this file as the render goes, and continue from it if it is there");

@@ -27,7 +27,8 @@ bool token_in_query_allowed(const httplib::Request& req) {
     const std::string& p = req.path;
     return (req.method == "GET" || req.method == "HEAD") &&
            (p.ends_with("/stream") || p.ends_with("/events") || p.ends_with("/image.png") || p.ends_with("/image.pfm") ||
-            p.ends_with("/image.exr") || p.ends_with("/thumbnail.png") || p.ends_with("/samples.png"));
+            p.ends_with("/image.exr") || p.ends_with("/image.denoised.png") || p.ends_with("/thumbnail.png") ||
+            p.ends_with("/samples.png"));
 }
 
 std::string check_token(const httplib::Request& req, const std::string& token) {

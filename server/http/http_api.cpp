@@ -286,7 +286,8 @@ void HttpApi::install_job_routes(httplib::Server& server) {
     });
 }
 
-// A job's latest frame: PNG, PFM, EXR (with the film's layers), and a thumbnail for lists of jobs.
+// A job's latest frame: PNG, its denoised preview, PFM, EXR (with the film's layers), and a
+// thumbnail for lists of jobs.
 void HttpApi::install_image_routes(httplib::Server& server) {
     using Req = httplib::Request;
     using Res = httplib::Response;
@@ -297,6 +298,15 @@ void HttpApi::install_image_routes(httplib::Server& server) {
         const JobSnapshot s = j->snapshot();
         if (!s.png) return send_error(res, 409, "no pass has finished yet");
         res.set_content(reinterpret_cast<const char*>(s.png->data()), s.png->size(), "image/png");
+    });
+    // The denoised preview: made from the frame on request (docs/denoiser.md), never in place
+    // of image.png.
+    server.Get(job + "/image.denoised.png", [this](const Req& req, Res& res) {
+        auto j = job_or_404(req, res);
+        if (!j) return;
+        const auto png = j->denoised_png();
+        if (!png) return send_error(res, 409, "no pass has finished yet");
+        res.set_content(reinterpret_cast<const char*>(png->data()), png->size(), "image/png");
     });
     server.Get(job + "/image.pfm", [this](const Req& req, Res& res) {
         auto j = job_or_404(req, res);

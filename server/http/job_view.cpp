@@ -25,6 +25,7 @@ nlohmann::json job_status(const Job& job) {
         {"urls",
          {{"self", self},
           {"png", self + "/image.png"},
+          {"denoised", self + "/image.denoised.png"},
           {"pfm", self + "/image.pfm"},
           {"exr", self + "/image.exr"},
           {"stream", self + "/stream"},

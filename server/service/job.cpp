@@ -5,6 +5,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "denoise/denoiser.h"
 #include "io/fingerprint.h"
 #include "service/priority.h"
 
@@ -113,16 +114,17 @@ void Job::publish(JobState state, const Progress& progress) {
         snapshot_.samples_png = std::move(png);
         snapshot_.samples_max = most;
     }
-    publish_frame(render_.film().mean(), film_layers(render_.film()), state, progress, false);
+    publish_frame(render_.film().mean(), film_layers(render_.film()),
+                  std::make_shared<const HalfBuffers>(half_buffers(render_.film())), state, progress, false);
 }
 
 // Only the render thread publishes, so the progress read here is still the job's when written.
 void Job::publish_preview(const Image& preview) {
-    publish_frame(preview, {}, JobState::running, snapshot().progress, true);
+    publish_frame(preview, {}, nullptr, JobState::running, snapshot().progress, true);
 }
 
-void Job::publish_frame(Image frame, std::vector<ExrLayer> layers, JobState state, const Progress& progress,
-                        bool preview) {
+void Job::publish_frame(Image frame, std::vector<ExrLayer> layers, std::shared_ptr<const HalfBuffers> halves,
+                        JobState state, const Progress& progress, bool preview) {
     // Encode outside the lock: watchers only ever wait for the pointer swap.
     auto image = std::make_shared<const Image>(std::move(frame));
     auto exr_layers = layers.empty() ? nullptr : std::make_shared<const std::vector<ExrLayer>>(std::move(layers));
@@ -135,6 +137,7 @@ void Job::publish_frame(Image frame, std::vector<ExrLayer> layers, JobState stat
         snapshot_.png = std::move(png);
         snapshot_.image = std::move(image);
         snapshot_.layers = std::move(exr_layers);
+        snapshot_.halves = std::move(halves);
         snapshot_.preview = preview;
     }
     changed_.notify_all();
@@ -342,12 +345,14 @@ void Job::resume(const Partial& checkpoint, const Progress& saved) {
 void Job::restore_final(const JobRecord& record, const Partial* film) {
     std::shared_ptr<const Image> image;
     std::shared_ptr<const std::vector<uint8_t>> png;
+    std::shared_ptr<const HalfBuffers> halves;
     if (film) {
         if (film->fingerprint != fingerprint_ || film->film.width() != render_.film().width() ||
             film->film.height() != render_.film().height())
             throw std::invalid_argument("it is from another scene or settings (fingerprint or size differs)");
         image = std::make_shared<const Image>(film->film.mean());
         png = std::make_shared<const std::vector<uint8_t>>(encode_png(*image, settings().encoding));
+        halves = std::make_shared<const HalfBuffers>(half_buffers(film->film));
     }
     std::lock_guard lock(mutex_);
     snapshot_.frame = 1;
@@ -357,6 +362,7 @@ void Job::restore_final(const JobRecord& record, const Partial* film) {
     snapshot_.stop = record.stop;
     snapshot_.image = std::move(image);
     snapshot_.png = std::move(png);
+    snapshot_.halves = std::move(halves);
 }
 
 void Job::fail(const std::string& error) {
@@ -368,9 +374,23 @@ void Job::fail(const std::string& error) {
         snapshot_.error = error;
         snapshot_.png.reset();
         snapshot_.image.reset();
+        snapshot_.halves.reset();
     }
     changed_.notify_all();
     spdlog::error("job {} failed: {}", id_, error);
+}
+
+std::shared_ptr<const std::vector<uint8_t>> Job::denoised_png() const {
+    const JobSnapshot s = snapshot();
+    if (!s.halves) return nullptr;
+    std::lock_guard lock(denoised_mutex_);
+    if (denoised_frame_ != s.frame || !denoised_png_) {
+        ThreadPool pool(0);  // the request's own threads: the render's pool belongs to the render
+        denoised_png_ = std::make_shared<const std::vector<uint8_t>>(
+            encode_png(denoise(*s.halves, DenoiserConfig{}, pool), settings().encoding));
+        denoised_frame_ = s.frame;
+    }
+    return denoised_png_;
 }
 
 JobSnapshot Job::snapshot() const {

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "io/exr_file.h"
+#include "denoise/half_buffers.h"
 #include "io/partial_file.h"
 #include "io/scene_loader.h"
 #include "render/renderer.h"
@@ -33,6 +34,9 @@ struct JobSnapshot {
     // samples_max, linear); null for other jobs, whose pixels all have spp_done.
     std::shared_ptr<const std::vector<uint8_t>> samples_png;
     uint64_t samples_max = 0;
+    // What the denoiser reads of that frame's film (null for the first preview): 52 bytes a
+    // pixel, so that a denoised preview can be made on request while the film goes on changing.
+    std::shared_ptr<const HalfBuffers> halves;
     std::string error;                                // why a failed job failed
     std::optional<PartCounts> parts;                  // a farm job's parts, once submitted
     std::optional<StopReason> stop;                   // why it ended (not set for a failed job)
@@ -85,6 +89,9 @@ public:
     void fail(const std::string& error);
 
     JobSnapshot snapshot() const;
+    // The latest frame denoised (denoise/denoiser.h), as PNG; made on the first request for a
+    // frame and kept until the next. Null until a pass has finished.
+    std::shared_ptr<const std::vector<uint8_t>> denoised_png() const;
     // Waits until there is a frame newer than `after`, the job is final, or `timeout` passes.
     JobSnapshot wait(uint64_t after, std::chrono::milliseconds timeout) const;
 
@@ -101,8 +108,11 @@ private:
     void publish(JobState state, const Progress& progress);
     // Publishes `image` as a frame without touching the film (the first preview).
     void publish_preview(const Image& image);
-    void publish_frame(Image frame, std::vector<ExrLayer> layers, JobState state, const Progress& progress,
-                       bool preview);
+    // The frame's film data (null for a preview), copied at each pass so that the routes
+    // serve a consistent frame while the film goes on changing: the denoiser's inputs and the
+    // EXR's other layers.
+    void publish_frame(Image frame, std::vector<ExrLayer> layers, std::shared_ptr<const HalfBuffers> halves,
+                       JobState state, const Progress& progress, bool preview);
     void set_stop(StopReason reason);
     // The job's state.json as it would be in `state`; record_locked() with mutex_ held.
     JobRecord record(JobState state, const std::string& error, const Progress& progress) const;
@@ -129,6 +139,9 @@ private:
     mutable std::mutex mutex_;
     mutable std::condition_variable changed_;
     JobSnapshot snapshot_;
+    mutable std::mutex denoised_mutex_;  // held while a denoised frame is made: made once
+    mutable uint64_t denoised_frame_ = 0;
+    mutable std::shared_ptr<const std::vector<uint8_t>> denoised_png_;
 };
 
 }  // namespace glint

@@ -1,7 +1,8 @@
 // Drives glint's page in Debian's headless Chromium against a real `glint serve` on a free
 // loopback port: picks a size, sets the SPP slider, renders, sees the image change at least
-// twice, zooms and pans, saves a screenshot, cancels, and sees a server error shown next to the
-// scene field; shows an adaptive job's sample counts with the Samples toggle. Then stops the server with SIGTERM and expects a clean exit.
+// twice, zooms and pans, saves a screenshot, cancels, toggles the denoised preview on and off,
+// and sees a server error shown next to the scene field; shows an adaptive job's sample counts
+// with the Samples toggle. Then stops the server with SIGTERM and expects a clean exit.
 // Usage: node page_test.mjs GLINT_BINARY SOURCE_DIR SCREENSHOT.png
 import { check, finish, imageHash, launchBrowser, startServer, waitFor } from "./support.mjs";
 
@@ -56,6 +57,18 @@ try {
   await waitFor(async () => ["cancelled", "done"].includes(await page.textContent("#fig-state")), 20000, "the job to end");
   check("cancel ends the job and frees the controls", !(await page.isDisabled("#render")));
   check("the PNG download link points at the job", /\/jobs\/[0-9a-f]{16}\/image\.png$/.test(await page.getAttribute("#download-png", "href")));
+
+  // The Denoised toggle shows the ended job's last frame denoised in place of the PNG, and back.
+  const src = () => page.getAttribute("#image", "src");
+  await waitFor(async () => /\/image\.png\?final=/.test(await src()) && await page.evaluate(imageHash), 20000, "the final PNG");
+  const unbiased = await page.evaluate(imageHash);
+  await page.click("#denoised");
+  await waitFor(async () => /\/image\.denoised\.png\?frame=/.test(await src()) && await page.evaluate(imageHash), 30000, "the denoised image");
+  const denoised = await page.evaluate(imageHash);
+  check("Denoised shows the denoised frame at the same size", denoised !== unbiased && denoised.startsWith("128x96:"), `${unbiased} ${denoised}`);
+  await page.click("#denoised");
+  await waitFor(async () => /\/image\.png\?final=/.test(await src()), 10000, "the unbiased image back");
+  check("Denoised off brings the unbiased image back", (await page.getAttribute("#denoised", "aria-pressed")) === "false");
 
   await page.fill("#scene-json", '{"objects": [{"type": "sphere", "center": [0, 0, 0], "radius": -1}]}');
   await page.click("#render");

@@ -6,7 +6,7 @@
 set -uo pipefail
 root=${1:-$(cd "$(dirname "$0")/../.." && pwd)}
 # Bottom to top. The service sits on the whole library; the command line on the HTTP layer.
-layers=(core/base core/shapes core/accel core/scene core/render core/io
+layers=(core/base core/shapes core/accel core/scene core/render core/io core/denoise
         server/service server/http server/cli)
 
 rank() {  # rank FOLDER: the layer's position, or nothing if FOLDER is not a layer

@@ -95,6 +95,19 @@ check "a batch writes an EXR per scene into the --exr folder" exr_magic "$work/e
 check "a batch ends with a summary" grep -q "^3 scenes: 2 rendered, 1 failed$" "$work/stdout"
 check "a batch prints one line per scene" test "$(grep -c "completed;" "$work/stdout")" -eq 2
 
+# --denoise: OUT.denoised.png beside OUT, which stays the unbiased image; in a batch, beside each.
+small=(render "$source/scenes/cornell.json" --width 32 --height 24 --spp 16 --threads 1)
+"$glint" "${small[@]}" -o "$work/plain.png" > /dev/null 2>&1
+"$glint" "${small[@]}" -o "$work/dn.png" --denoise > /dev/null 2>&1
+check "--denoise writes OUT.denoised.png" cmp -s -n 8 "$work/dn.denoised.png" <(printf '\x89PNG\r\n\x1a\n')
+check "--denoise leaves OUT the unbiased image" cmp -s "$work/dn.png" "$work/plain.png"
+check "the denoised image differs from it" test -n "$(cmp "$work/dn.png" "$work/dn.denoised.png")"
+"$glint" render "$work/batch" -o "$work/dnbatch" --denoise > /dev/null 2>&1
+check "--denoise in a batch writes one beside each PNG" test -s "$work/dnbatch/a.denoised.png" -a -s "$work/dnbatch/b.denoised.png"
+"$glint" render "$work/tiny.json" --partial "$work/p" --denoise 2> "$work/stderr"
+check "--denoise without -o exits 2" test $? -eq 2
+check "and says why" grep -q "^glint: --denoise writes OUT.denoised.png beside the PNG: give -o$" "$work/stderr"
+
 # One job split over three processes running at once, merged: the whole render's image.
 ranges=$(for i in 0 1 2; do "$source/docker/sample-range" $i 3 40; done | tr '\n' ' ')
 check "sample-range tiles 40 spp in 3 parts of whole rounds" test "$ranges" = "0:12 12:24 24:40 "

@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "denoise/denoiser.h"
 #include "http/job_view.h"
 #include "io/exr_file.h"
 #include "support/http_server_fixture.h"
@@ -20,6 +21,15 @@ using testing::Server;
 using testing::decode_png;
 using testing::Decoded;
 using testing::kSmallCornell;
+
+// The scene of kSmallCornell, as the library loads it.
+LoadedScene small_cornell() {
+    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
+    s.settings.width = 40;
+    s.settings.height = 30;
+    s.settings.spp = 16;
+    return s;
+}
 
 TEST_F(Server, HealthAndPresets) {
     EXPECT_EQ(get_json("/health")["status"], "ok");
@@ -37,11 +47,7 @@ TEST_F(Server, RenderReturnsTheSamePngAsTheLibrary) {
     ASSERT_TRUE(res);
     ASSERT_EQ(res->status, 200);
     EXPECT_EQ(res->get_header_value("Content-Type"), "image/png");
-    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
-    s.settings.width = 40;
-    s.settings.height = 30;
-    s.settings.spp = 16;
-    const auto job = testing::render(s);
+    const auto job = testing::render(small_cornell());
     const std::vector<uint8_t> expected = encode_png(job->film().mean(), Encoding::gamma22);
     EXPECT_EQ(res->body, std::string(expected.begin(), expected.end()));
 }
@@ -88,6 +94,22 @@ TEST_F(Server, ImageExrIsTheFilmWithItsLayers) {
     const std::vector<uint8_t> expected = encode_film_exr(job->film().mean(), job->film());
     EXPECT_EQ(exr->body, std::string(expected.begin(), expected.end()));
     EXPECT_EQ(get_json("/jobs/0123456789abcdef/image.exr", 404)["error"], "no job 0123456789abcdef");
+}
+
+TEST_F(Server, ServesTheDenoisedPreviewBesideTheUnbiasedImage) {
+    const std::string id = post("/jobs", kSmallCornell, 202)["id"];
+    const json done = wait_until_final(id);
+    EXPECT_EQ(done["urls"]["denoised"], "/jobs/" + id + "/image.denoised.png");
+    auto res = client_->Get(("/jobs/" + id + "/image.denoised.png").c_str());
+    ASSERT_TRUE(res);
+    ASSERT_EQ(res->status, 200);
+    EXPECT_EQ(res->get_header_value("Content-Type"), "image/png");
+    ThreadPool pool(1);
+    const auto job = testing::render(small_cornell());
+    const std::vector<uint8_t> expected = encode_png(denoise(job->film(), DenoiserConfig{}, pool), Encoding::gamma22);
+    EXPECT_EQ(res->body, std::string(expected.begin(), expected.end()));
+    EXPECT_NE(res->body, client_->Get(("/jobs/" + id + "/image.png").c_str())->body);  // the PNG stays unbiased
+    EXPECT_EQ(client_->Get("/jobs/nope/image.denoised.png")->status, 404);
 }
 
 TEST_F(Server, BadInputGetsAStatusAndAJsonBody) {

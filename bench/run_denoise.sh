@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# The denoised preview against the unbiased image on every scene in scenes/: relMSE and RMSE
+# against a converged reference along a ladder of samples per pixel, the denoiser's CPU time,
+# and its time at 1024×768. Writes bench/results/denoise.csv, bench/results/denoise_time.csv,
+# bench/plots/denoise.svg, and PNGs of the 16 spp rung in bench/out/denoise/ to look at
+# (three of them beside their references in bench/plots/denoise_16spp.png). The references
+# (bench/out/denoise/SCENE/reference.png) are `glint render scenes/SCENE.json --width 128
+# --height 96 --spp 1024 --seed 24301 -o reference.png --hdr reference-128x96-1024spp.pfm`,
+# the image denoise_vs_error would render itself.
+# Run by hand (at 128×96, so that the references, 1024 spp rendered once and kept in
+# bench/out/denoise/, take minutes on a busy 2-core machine):
+#   bench/run_denoise.sh [max-spp]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+max_spp=${1:-256}
+cmake -S . -B build -G Ninja >/dev/null && cmake --build build --target denoise_vs_error >/dev/null
+out=bench/out/denoise
+mkdir -p "$out" bench/results
+csv=bench/results/denoise.csv
+echo "scene,width,height,spp,render_cpu,rmse,relmse,rmse_denoised,relmse_denoised,denoise_cpu,denoise_wall" > "$csv"
+for scene in cornell cornell_box caustic spheres mesh bunny_box sponza; do
+  build/bench/denoise_vs_error "scenes/$scene.json" --out "$out/$scene" --width 128 --height 96 --reference-spp 1024 \
+    --max-spp "$max_spp" --threads 2 | tee -a "$csv"
+done
+# The denoiser's time at preview sizes: a film of 16 spp at 256×192 and 1024×768 (no reference).
+time_csv=bench/results/denoise_time.csv
+echo "scene,width,height,spp,render_cpu,rmse,relmse,rmse_denoised,relmse_denoised,denoise_cpu,denoise_wall" > "$time_csv"
+for size in "256 192" "1024 768"; do
+  set -- $size
+  build/bench/denoise_vs_error scenes/cornell.json --out "$out/time-$1" --width "$1" --height "$2" \
+    --reference-spp 4 --max-spp 16 --threads 2 | tee -a "$time_csv"
+done
+/usr/bin/python3 bench/plot_denoise.py "$csv"

@@ -1,0 +1,85 @@
+#include "denoise/denoiser.h"
+
+#include <cmath>
+
+#include "denoise/box_filter.h"
+#include "denoise/nl_means.h"
+
+namespace glint {
+namespace {
+
+float squared_distance(const Planes& x, const Planes& y, size_t i) {
+    float sum = 0;
+    for (int c = 0; c < 3; ++c) sum += (x[c][i] - y[c][i]) * (x[c][i] - y[c][i]) / 3;
+    return sum;
+}
+
+// Per candidate (0: the unfiltered mean, then one per filter), per pixel: an estimate of its
+// squared error plus the variance of a half. A half filtered with weights from itself is
+// independent of the other half, so E[(F(A) - B)²] = MSE(F(A)) + Var(B), and E[(A - B)²] =
+// Var(A) + Var(B).
+std::vector<std::vector<float>> candidate_errors(const HalfBuffers& h, const NlMeansOutput& fa, const NlMeansOutput& fb) {
+    std::vector<std::vector<float>> errors(fa.filtered.size() + 1, std::vector<float>(h.mean[0].size()));
+    for (size_t i = 0; i < errors[0].size(); ++i) {
+        errors[0][i] = squared_distance(h.a, h.b, i);
+        for (size_t k = 0; k < fa.filtered.size(); ++k)
+            errors[k + 1][i] = (squared_distance(fa.filtered[k], h.b, i) + squared_distance(fb.filtered[k], h.a, i)) / 2;
+    }
+    return errors;
+}
+
+// Per candidate, per pixel: 1 where that candidate has the least error averaged over the box
+// around the pixel (one pixel's estimate has one degree of freedom per channel), the unfiltered
+// mean on a tie; 0 elsewhere.
+std::vector<std::vector<float>> selection_maps(const HalfBuffers& h, std::vector<std::vector<float>> errors,
+                                               int radius) {
+    for (auto& error : errors) error = box_filter(error, h.width, h.height, radius);
+    std::vector<std::vector<float>> maps(errors.size(), std::vector<float>(errors[0].size(), 0.0f));
+    for (size_t i = 0; i < errors[0].size(); ++i) {
+        size_t best = 0;
+        for (size_t k = 1; k < errors.size(); ++k)
+            if (errors[k][i] < errors[best][i]) best = k;
+        maps[best][i] = 1;
+    }
+    return maps;
+}
+
+// Each pixel's value: the candidates weighted by their maps, a filtered
+// candidate's value being the mean of its two filtered halves; then the splats added back.
+Image blend(const HalfBuffers& h, const NlMeansOutput& fa, const NlMeansOutput& fb,
+            const std::vector<std::vector<float>>& maps) {
+    Image image(h.width, h.height);
+    for (size_t i = 0; i < h.mean[0].size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            double value = maps[0][i] * h.mean[c][i], total = maps[0][i];
+            for (size_t k = 1; k < maps.size(); ++k) {
+                value += maps[k][i] * (fa.filtered[k - 1][c][i] + fb.filtered[k - 1][c][i]) / 2;
+                total += maps[k][i];
+            }
+            const double blended = value / total;
+            image.rgb[i * 3 + c] = float((std::isfinite(blended) && total > 0 ? blended : h.mean[c][i]) + h.splats[c][i]);
+        }
+    return image;
+}
+
+}  // namespace
+
+Image denoise(const Film& film, const DenoiserConfig& config, ThreadPool& pool) {
+    return denoise(half_buffers(film), config, pool);
+}
+
+Image denoise(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPool& pool) {
+    DenoiserConfig usable = config;
+    if (!halves.has_features())
+        std::erase_if(usable.candidates, [](const DenoiserConfig::Candidate& k) { return k.feature > 0; });
+    const bool features = halves.has_features();
+    const NlMeansOutput fa = nl_means({halves.width, halves.height, &halves.a, &halves.half_variance,
+                                       features ? &halves.features_a : nullptr, &halves.feature_variance},
+                                      usable, pool);
+    const NlMeansOutput fb = nl_means({halves.width, halves.height, &halves.b, &halves.half_variance,
+                                       features ? &halves.features_b : nullptr, &halves.feature_variance},
+                                      usable, pool);
+    return blend(halves, fa, fb, selection_maps(halves, candidate_errors(halves, fa, fb), usable.selection_radius));
+}
+
+}  // namespace glint

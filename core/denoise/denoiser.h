@@ -1,0 +1,24 @@
+// A denoised preview of a film, after Rousselle, Knaus and Zwicker 2012 and Rousselle, Manzi
+// and Zwicker 2013 (non-local means on the film's two independent halves, with its AOVs when it
+// has them; docs/denoiser.md): each half is filtered on its own by a few candidate filters, each
+// result's error is estimated per pixel against the other half, and every pixel takes the
+// candidate, or its unfiltered mean, whose estimated error is least. As samples
+// grow, the filters' weights shrink with the noise and the unfiltered mean wins: the preview
+// converges to the unbiased image.
+#pragma once
+
+#include "base/image.h"
+#include "base/thread_pool.h"
+#include "denoise/denoiser_config.h"
+#include "denoise/half_buffers.h"
+#include "render/film.h"
+
+namespace glint {
+
+// The film's image, denoised; bit-identical for any pool size. Finite wherever the film is.
+Image denoise(const Film& film, const DenoiserConfig& config, ThreadPool& pool);
+// The same from what the denoiser reads of a film, kept where the film goes on changing (a
+// running job's frame).
+Image denoise(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPool& pool);
+
+}  // namespace glint

@@ -1,0 +1,39 @@
+// The denoiser's parameters (docs/denoiser.md explains each against the paper it follows).
+#pragma once
+
+#include <vector>
+
+namespace glint {
+
+struct DenoiserConfig {
+    // Half-width of the search window: each pixel averages over (2r+1)² neighbours. 7 (15×15)
+    // removes most of 16 spp's noise on the scenes in scenes/ and keeps a 1024×768 image in
+    // seconds; the cost grows with its square.
+    int window_radius = 7;
+    // Half-width of the patches compared: 5×5 patches (2) make the distance between two pixels
+    // an average over 75 values, steady enough at a few samples per pixel, and still follow
+    // edges a few pixels wide.
+    int patch_radius = 2;
+    // The candidate filters, each a pair of strengths: a colour patch distance of k² times the
+    // two pixels' variance costs the neighbour a weight of e^-1, and so does a feature (AOV)
+    // differing by k_f² times its variance (or feature_floor); 0 leaves that test out. Larger k
+    // smooths more; each pixel then takes the candidate, or its unfiltered value, whose
+    // estimated error is least. Candidates that compare features need the film's AOVs and are
+    // left out without them. As in Rousselle et al. 2013: colour alone; colour and features;
+    // features alone (the strongest, for flat regions at few samples).
+    struct Candidate {
+        float colour = 0, feature = 0;
+    };
+    std::vector<Candidate> candidates = {{0.45f, 0}, {1.0f, 0}, {0.45f, 0.6f}, {0, 0.6f}};
+    // How much of the two pixels' variance the distance takes off (Rousselle et al.'s α):
+    // 1 removes the expected squared difference that noise alone makes.
+    float variance_cancel = 1.0f;
+    // Half-width of the box over which each candidate's per-pixel error estimate is averaged
+    // before a pixel picks one: one pixel's estimate has one degree of freedom per channel.
+    int selection_radius = 3;
+    // Below this a feature's variance counts as this much: features are nearly noise-free, and
+    // a normal or albedo that differs by less than 3% of its range is taken as the same.
+    float feature_floor = 1e-3f;
+};
+
+}  // namespace glint
