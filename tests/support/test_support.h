@@ -10,14 +10,17 @@ namespace glint::testing {
 
 inline LoadedScene scene_from(const std::string& text) { return parse_scene(text, {}); }
 
-// smallpt's Cornell box from scenes/, at 40×30 pixels and `spp` samples a pixel.
-inline LoadedScene small_cornell(uint32_t spp = 64) {
-    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
-    s.settings.width = 40;
-    s.settings.height = 30;
+// A scene file of scenes/ at a small size.
+inline LoadedScene small_scene(const std::string& file, int width, int height, uint32_t spp) {
+    LoadedScene s = load_scene(std::string(GLINT_SCENES_DIR) + "/" + file);
+    s.settings.width = width;
+    s.settings.height = height;
     s.settings.spp = spp;
     return s;
 }
+
+// smallpt's Cornell box from scenes/, at 40×30 pixels and `spp` samples a pixel.
+inline LoadedScene small_cornell(uint32_t spp = 64) { return small_scene("cornell.json", 40, 30, spp); }
 
 // Renders a scene on its own pool; the film holds every sample.
 inline std::unique_ptr<RenderJob> render(const LoadedScene& loaded, unsigned threads = 2) {

@@ -148,11 +148,7 @@ TEST(Adaptive, AResumedRenderEqualsAnUninterruptedOne) {
 }
 
 LoadedScene small_caustic() {
-    LoadedScene s = load_scene(GLINT_SCENES_DIR "/caustic.json");
-    s.settings.width = 32;
-    s.settings.height = 24;
-    s.settings.spp = 64;
-    return s;
+    return testing::small_scene("caustic.json", 32, 24, 64);
 }
 
 // Light tracing, whole image: a stopped pixel traces no light paths, and the splats are divided
@@ -245,10 +241,7 @@ TEST(Adaptive, ConvergesToThePlainImageOnTheCornellBox) {
 }
 
 TEST(Adaptive, ConvergesToThePlainImageOnTheMeshScene) {
-    LoadedScene s = load_scene(GLINT_SCENES_DIR "/mesh.json");
-    s.settings.width = 40;
-    s.settings.height = 30;
-    s.settings.spp = 256;
+    LoadedScene s = testing::small_scene("mesh.json", 40, 30, 256);
     expect_agrees_with_plain_render(s, 0.02);
 }
 

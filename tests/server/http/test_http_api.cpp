@@ -23,13 +23,7 @@ using testing::Decoded;
 using testing::kSmallCornell;
 
 // The scene of kSmallCornell, as the library loads it.
-LoadedScene small_cornell() {
-    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
-    s.settings.width = 40;
-    s.settings.height = 30;
-    s.settings.spp = 16;
-    return s;
-}
+LoadedScene small_cornell() { return testing::small_cornell(16); }
 
 TEST_F(Server, HealthAndPresets) {
     EXPECT_EQ(get_json("/health")["status"], "ok");
@@ -85,10 +79,7 @@ TEST_F(Server, ImageExrIsTheFilmWithItsLayers) {
     EXPECT_EQ(exr->status, 200);
     EXPECT_EQ(exr->get_header_value("Content-Type"), "image/x-exr");
     EXPECT_EQ(exr->body.substr(0, 4), std::string("\x76\x2f\x31\x01", 4));
-    LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
-    s.settings.width = 40;
-    s.settings.height = 30;
-    s.settings.spp = 16;
+    LoadedScene s = small_cornell();
     s.settings.aovs = true;
     const auto job = testing::render(s);
     const std::vector<uint8_t> expected = encode_film_exr(job->film().mean(), job->film());
