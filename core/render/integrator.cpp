@@ -123,18 +123,17 @@ Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light, const FirstV
     path.ray = ray;
     path.first = first;
     path.direct_view = direct;
-    path.aov = aov;
     if (aov) *aov = Aov{};
-    return trace(path, rng, light);
+    return trace(path, rng, light, aov);
 }
 
-void PathTracer::note_aov(PathState& path, double t, const SurfaceInteraction& si, const Material& m,
-                          bool diffuse) const {
-    if (path.depth == 0) path.aov->depth = camera_.near() + t;
-    if (!diffuse) return;
-    path.aov->albedo = m.albedo;
-    path.aov->normal = dot(path.ray.d, si.n) < 0 ? si.n : -si.n;
-    path.aov = nullptr;
+Aov* PathTracer::note_aov(Aov* aov, const PathState& path, double t, const SurfaceInteraction& si,
+                          const Material& m, bool diffuse) const {
+    if (path.depth == 0) aov->depth = camera_.near() + t;
+    if (!diffuse) return aov;
+    aov->albedo = m.albedo;
+    aov->normal = dot(path.ray.d, si.n) < 0 ? si.n : -si.n;
+    return nullptr;
 }
 
 bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, bool diffuse, const BsdfSample& bs,
@@ -201,7 +200,7 @@ void PathTracer::gather_at_diffuse(PathState& path, const SurfaceInteraction& si
         result += through_caster(si, ray.d, m, path.throughput, rng);
 }
 
-Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
+Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov) const {
     const IntegratorSettings& settings = scene_.integrator();
     const bool nee = settings.light_sampling && !scene_.lights().empty();
     Rgb result{0};
@@ -219,7 +218,7 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
             break;
         }
         const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
-        if (path.aov) note_aov(path, hit.t, si, m, diffuse);
+        if (aov) aov = note_aov(aov, path, hit.t, si, m, diffuse);
         // Caustic paths that light tracing covers are its alone (mis.h).
         const bool traced_from_light = strategies_.light_tracing() && path.shape == PathShape::caustic &&
                                        strategies_.caustic_emitter().covers(hit.prim, si.p, path.self);
@@ -231,7 +230,6 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light) const {
         BsdfSample bs, reflected;
         if (m.type == MaterialType::glass && path.depth < kSplitDepth && split_glass(m, ray.d, si.n, reflected, bs)) {
             PathState branch = path;  // with the same stratified numbers for its first diffuse vertex
-            branch.aov = nullptr;
             if (extend_path(branch, si, diffuse, reflected, rng)) result += trace(branch, rng, light);
         } else {
             bs = first ? sample_diffuse(m, ray.d, si.n, first->bounce[0], first->bounce[1]) : sample_bsdf(m, ray.d, si.n, rng);

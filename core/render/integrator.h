@@ -71,7 +71,6 @@ private:
         double caster_pdf = 0, caster_bsdf_pdf = 0;
         int caster_bounces = 0;
         DirectView direct_view = DirectView::gathered;
-        Aov* aov = nullptr;  // until the first diffuse vertex has filled it in
         bool seen_directly = true;  // no diffuse vertex yet: what the path finds belongs to the direct view
         // Whether light found now counts: the direct view's share depends on the path's part.
         bool counts_found_light() const { return !(seen_directly && direct_view == DirectView::left_out); }
@@ -82,10 +81,13 @@ private:
     // ray may branch into: 2 keeps them at four. The refraction carries on the path's AOVs: what
     // lies behind glass, one deterministic branch, as a denoiser wants the features it sees.
     static constexpr int kSplitDepth = 2;
-    Rgb trace(PathState path, Rng& rng, const LightPath& light) const;
-    // Fills in path.aov at a surface the path meets (hit at distance t along its ray), and lets
-    // go of it at the first diffuse vertex.
-    void note_aov(PathState& path, double t, const SurfaceInteraction& si, const Material& m, bool diffuse) const;
+    // `aov` (kept out of PathState, which glass splitting copies) is filled in until the first
+    // diffuse vertex; nullptr: no AOVs.
+    Rgb trace(PathState path, Rng& rng, const LightPath& light, Aov* aov = nullptr) const;
+    // Fills in `aov` at a surface the path meets (hit at distance t along its ray); returns
+    // nullptr at the first diffuse vertex, where the AOVs are complete, and `aov` before it.
+    Aov* note_aov(Aov* aov, const PathState& path, double t, const SurfaceInteraction& si, const Material& m,
+                  bool diffuse) const;
     // Moves the path on from si along bs (false: it ends there, by Russian roulette or a black
     // throughput).
     bool extend_path(PathState& path, const SurfaceInteraction& si, bool diffuse, const BsdfSample& bs, Rng& rng) const;
