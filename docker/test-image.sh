@@ -35,7 +35,7 @@ CONF
 if ! podman image exists "$base"; then
   mirror=${DEBIAN_MIRROR:-$( { cat /etc/apt/sources.list /etc/apt/sources.list.d/*.list \
       /etc/apt/sources.list.d/*.sources 2>/dev/null || true; } | grep -v '^[[:space:]]*#' \
-      | grep -oE 'https?://[^ ]+/debian/?( |$)' | head -n1 | tr -d ' ')}
+      | grep -oE 'https?://[^ ]+/debian/?( |$)' | sed -n 1p | tr -d ' ')}
   [[ -n $mirror ]] || { echo "no Debian mirror found; set DEBIAN_MIRROR" >&2; exit 1; }
   step "debootstrap bookworm from $mirror"
   rm -rf "$work/rootfs"

@@ -74,7 +74,10 @@ refused "--repeat: must be an integer in [1, 1000]" trace-rays mesh.obj rays.ray
 # A thread the system refuses within the range (here: no address space left for its stack) ends
 # the command with one line and exit 1 once the threads started are stopped, never an abort. Not
 # under AddressSanitizer, whose shadow memory needs terabytes of address space to start at all.
-if ! ldd "$glint" | grep -q libasan; then
+# (ldd to a file first: under pipefail, `ldd | grep -q` fails whenever grep quits before ldd
+# has written everything and ldd dies of SIGPIPE.)
+ldd "$glint" > "$work/ldd"
+if ! grep -q libasan "$work/ldd"; then
   (ulimit -v 400000; "$glint" render "$work/tiny.json" -o "$work/x.png" --threads 1024) > /dev/null 2> "$work/stderr"
   check "a render whose threads the system refuses exits 1" test $? -eq 1
   check "and says which thread failed" grep -q "^glint: cannot start render thread [0-9]* of 1024: " "$work/stderr"
