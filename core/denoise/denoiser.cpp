@@ -1,5 +1,7 @@
 #include "denoise/denoiser.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "denoise/box_filter.h"
@@ -8,22 +10,42 @@
 namespace glint {
 namespace {
 
-float squared_distance(const Planes& x, const Planes& y, size_t i) {
+// Per channel, what a squared error at pixel i is divided by to make it relative: the square of
+// the least of the pixel's values (its mean, each candidate's), plus a floor. A candidate that
+// carries a bright neighbour's energy into a dark pixel is then judged by that pixel's own
+// scale, as relMSE judges it; taking the least value keeps the scale from being the error it
+// measures.
+std::array<float, 3> error_scale(const HalfBuffers& h, const NlMeansOutput& fa, const NlMeansOutput& fb, size_t i,
+                                 float floor) {
+    std::array<float, 3> scale{};
+    for (int c = 0; c < 3; ++c) {
+        float least = std::abs(h.mean[c][i]);
+        for (size_t k = 0; k < fa.filtered.size(); ++k)
+            least = std::min(least, std::abs(fa.filtered[k][c][i] + fb.filtered[k][c][i]) / 2);
+        scale[c] = 1 / (least * least + floor);
+    }
+    return scale;
+}
+
+float squared_distance(const Planes& x, const Planes& y, size_t i, const std::array<float, 3>& scale) {
     float sum = 0;
-    for (int c = 0; c < 3; ++c) sum += (x[c][i] - y[c][i]) * (x[c][i] - y[c][i]) / 3;
+    for (int c = 0; c < 3; ++c) sum += (x[c][i] - y[c][i]) * (x[c][i] - y[c][i]) * scale[c] / 3;
     return sum;
 }
 
 // Per candidate (0: the unfiltered mean, then one per filter), per pixel: an estimate of its
-// squared error plus the variance of a half. A half filtered with weights from itself is
-// independent of the other half, so E[(F(A) - B)²] = MSE(F(A)) + Var(B), and E[(A - B)²] =
-// Var(A) + Var(B).
-std::vector<std::vector<float>> candidate_errors(const HalfBuffers& h, const NlMeansOutput& fa, const NlMeansOutput& fb) {
+// relative squared error plus the relative variance of a half. A half filtered with weights
+// from itself is independent of the other half, so E[(F(A) - B)²] = MSE(F(A)) + Var(B), and
+// E[(A - B)²] = Var(A) + Var(B).
+std::vector<std::vector<float>> candidate_errors(const HalfBuffers& h, const NlMeansOutput& fa, const NlMeansOutput& fb,
+                                                 float floor) {
     std::vector<std::vector<float>> errors(fa.filtered.size() + 1, std::vector<float>(h.mean[0].size()));
     for (size_t i = 0; i < errors[0].size(); ++i) {
-        errors[0][i] = squared_distance(h.a, h.b, i);
+        const std::array<float, 3> scale = error_scale(h, fa, fb, i, floor);
+        errors[0][i] = squared_distance(h.a, h.b, i, scale);
         for (size_t k = 0; k < fa.filtered.size(); ++k)
-            errors[k + 1][i] = (squared_distance(fa.filtered[k], h.b, i) + squared_distance(fb.filtered[k], h.a, i)) / 2;
+            errors[k + 1][i] =
+                (squared_distance(fa.filtered[k], h.b, i, scale) + squared_distance(fb.filtered[k], h.a, i, scale)) / 2;
     }
     return errors;
 }
@@ -79,7 +101,7 @@ Image denoise(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPoo
     const NlMeansOutput fb = nl_means({halves.width, halves.height, &halves.b, &halves.half_variance,
                                        features ? &halves.features_b : nullptr, &halves.feature_variance},
                                       usable, pool);
-    return blend(halves, fa, fb, selection_maps(halves, candidate_errors(halves, fa, fb), usable.selection_radius));
+    return blend(halves, fa, fb, selection_maps(halves, candidate_errors(halves, fa, fb, usable.relative_error_floor), usable.selection_radius));
 }
 
 }  // namespace glint

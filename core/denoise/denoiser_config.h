@@ -29,8 +29,14 @@ struct DenoiserConfig {
     // 1 removes the expected squared difference that noise alone makes.
     float variance_cancel = 1.0f;
     // Half-width of the box over which each candidate's per-pixel error estimate is averaged
-    // before a pixel picks one: one pixel's estimate has one degree of freedom per channel.
-    int selection_radius = 3;
+    // before a pixel picks one: one pixel's estimate has one degree of freedom per channel, and
+    // 5×5 (2) gives 75 while still following edges and small bright features; 7×7 let one
+    // noisy pixel's estimate decide for twice as many neighbours.
+    int selection_radius = 2;
+    // The error estimates are relative: a squared error at a pixel of value v counts divided by
+    // v² + this floor (v the least of its candidates), as relMSE weighs it, so that a dark
+    // pixel's error is not outweighed by a bright neighbour's noise. 0.01: relMSE's own floor.
+    float relative_error_floor = 0.01f;
     // Below this a feature's variance counts as this much: features are nearly noise-free, and
     // a normal or albedo that differs by less than 3% of its range is taken as the same.
     float feature_floor = 1e-3f;

@@ -25,8 +25,12 @@ struct BandSums {
 };
 
 // Per pixel of rows [y0, y1), for neighbour offset o (clamped at the border): the squared
-// difference of the two pixels, mean over channels, less the share noise explains, and the sum
-// of their variances; then both averaged over the patch.
+// difference of the two pixels, mean over channels, less the share noise explains, and twice
+// the variance of the pixel p being filtered; then both averaged over the patch. The distance
+// is measured in units of p's own noise, not of the two pixels' together: with the sum, a
+// neighbour made very noisy by a firefly looks like anything and a quiet dark pixel takes a share
+// of its energy (a halo the error estimates then keep where the firefly's own error dominates
+// the box they average over), while a noisy pixel still takes its quieter neighbours.
 void patch_terms(const NlMeansInput& in, const DenoiserConfig& config, Offset o, int y0, int y1,
                  std::vector<float>& distance, std::vector<float>& variance) {
     const int w = in.width;
@@ -44,7 +48,7 @@ void patch_terms(const NlMeansInput& in, const DenoiserConfig& config, Offset o,
             }
             const size_t i = size_t(y - y0) * w + x;
             distance[i] = d - config.variance_cancel * (var[p] + std::min(var[p], var[q]));
-            variance[i] = var[p] + var[q];
+            variance[i] = 2 * var[p];
         }
     distance = box_filter(distance, w, y1 - y0, config.patch_radius);
     variance = box_filter(variance, w, y1 - y0, config.patch_radius);

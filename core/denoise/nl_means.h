@@ -1,7 +1,8 @@
 // Non-local means for rendered images (Rousselle, Knaus and Zwicker 2012, "Adaptive rendering
 // with non-local means filtering"): each pixel becomes a weighted mean of the pixels in a window
 // around it, a neighbour weighing by how alike the patches around the two are, their squared
-// difference less what the two pixels' noise makes and measured in units of that noise; with
+// difference less what the two pixels' noise makes and measured in units of the filtered pixel's
+// own noise; with
 // features (Rousselle, Manzi and Zwicker 2013), a neighbour also weighs by how alike its features
 // are, and its weight is the lesser of the two. Several candidates at once: they share the
 // distances.

@@ -71,6 +71,27 @@ TEST(Denoiser, KeepsASharpEdgeBetweenFlatRegions) {
     }
 }
 
+// A dark, quiet region beside a bright and very noisy one (a lamp's glow beside a shadow, or a
+// caustic beside the dark): the dark pixels by the edge must not take the bright side's light.
+// The bright side's noise dwarfs any error in the dark in absolute terms; measured relative to
+// each pixel's own level and in units of its own noise, the dark side keeps its value.
+TEST(Denoiser, KeepsTheDarkSideOfAnEdgeBesideABrightNoisyRegion) {
+    Film film(48, 40);
+    std::mt19937_64 rng(11);
+    std::exponential_distribution<double> bright(1.0 / 4);  // heavy-tailed, mean 4
+    std::normal_distribution<double> quiet(0.02, 0.005);
+    std::vector<Rgb> samples(4);
+    for (int r = 0; r < 4; ++r)
+        for (int y = 0; y < 40; ++y)
+            for (int x = 0; x < 48; ++x) {
+                for (Rgb& s : samples) s = Rgb{x < 24 ? quiet(rng) : bright(rng)};
+                film.add_round(x, y, samples, r % 2 == 0);
+            }
+    const Image image = denoised(film);
+    for (int x = 20; x < 24; ++x)  // the dark columns by the edge, each pixel on its own
+        for (int y = 0; y < 40; ++y) EXPECT_LT(image.at(x, y).x, 0.1) << x << "," << y;
+}
+
 TEST(Denoiser, WithAovsKeepsTheEdgeTheFeaturesShowAndRemovesMoreNoise) {
     const Film plain = noisy_film(48, 40, edge, 4, 0.3), featured = noisy_film(48, 40, edge, 4, 0.3, 7, true);
     const Image truth = truth_image(48, 40, edge), image = denoised(featured);
