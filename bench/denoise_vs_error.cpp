@@ -5,7 +5,7 @@
 // while it runs: the machine is shared) and its wall time. One CSV row per rung, for
 // bench/plot_denoise.py (columns: scene, width, height, spp, render CPU s so far, RMSE and relMSE
 // of the unbiased image, of the denoised one, the denoiser's CPU s and wall s); the images of
-// one rung are written as PNGs to look at, and as PFMs.
+// one rung are written as PNGs to look at, and as PFMs, with the reference as reference.png.
 #include <CLI/CLI.hpp>
 #include <sys/resource.h>
 
@@ -70,6 +70,7 @@ void measure(const Options& o, const RenderJob& job, uint32_t spp, double render
     write_file(stem + ".denoised.png", encode_png(denoised, job.settings().encoding));
     write_file(stem + ".pfm", encode_pfm(image));
     write_file(stem + ".denoised.pfm", encode_pfm(denoised));
+    write_file((fs::path(o.out) / "reference.png").string(), encode_png(ref, job.settings().encoding));
 }
 
 }  // namespace

@@ -3,10 +3,9 @@
 # against a converged reference along a ladder of samples per pixel, the denoiser's CPU time,
 # and its time at 1024×768. Writes bench/results/denoise.csv, bench/results/denoise_time.csv,
 # bench/plots/denoise.svg, and PNGs of the 16 spp rung in bench/out/denoise/ to look at
-# (three of them beside their references in bench/plots/denoise_16spp.png). The references
-# (bench/out/denoise/SCENE/reference.png) are `glint render scenes/SCENE.json --width 128
-# --height 96 --spp 1024 --seed 24301 -o reference.png --hdr reference-128x96-1024spp.pfm`,
-# the image denoise_vs_error would render itself.
+# (three of them beside their references in bench/plots/denoise_16spp.png). The references,
+# bench/out/denoise/SCENE/reference-128x96-1024spp.pfm and reference.png, are rendered by
+# denoise_vs_error itself on its first run (seed 0x5EED) and kept.
 # Run by hand (at 128×96, so that the references, 1024 spp rendered once and kept in
 # bench/out/denoise/, take minutes on a busy 2-core machine):
 #   bench/run_denoise.sh [max-spp]

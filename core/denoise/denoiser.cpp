@@ -50,33 +50,41 @@ std::vector<std::vector<float>> candidate_errors(const HalfBuffers& h, const NlM
     return errors;
 }
 
-// Per candidate, per pixel: 1 where that candidate has the least error averaged over the box
-// around the pixel (one pixel's estimate has one degree of freedom per channel), the unfiltered
-// mean on a tie; 0 elsewhere.
-std::vector<std::vector<float>> selection_maps(const HalfBuffers& h, std::vector<std::vector<float>> errors,
-                                               int radius) {
+// Per candidate, per pixel: its weight in the pixel's blend, the inverse square of its error
+// estimate averaged over the box around the pixel (one pixel's estimate has one degree of
+// freedom per channel). The averaged estimates hold a half's variance V on top of each filtered
+// candidate's error, and 2V for the unfiltered mean: a candidate's error is its estimate less V
+// (at least kLeastError·V: an estimate can fall below it by noise), the unfiltered mean's is V.
+// Weights are relative to the unfiltered mean's, 1; where V is 0 (no noise, or no halves yet)
+// the pixel keeps its mean.
+std::vector<std::vector<float>> blend_weights(const HalfBuffers& h, std::vector<std::vector<float>> errors,
+                                              int radius) {
+    constexpr double kLeastError = 1e-3;
     for (auto& error : errors) error = box_filter(error, h.width, h.height, radius);
-    std::vector<std::vector<float>> maps(errors.size(), std::vector<float>(errors[0].size(), 0.0f));
+    std::vector<std::vector<float>> weights(errors.size(), std::vector<float>(errors[0].size(), 0.0f));
     for (size_t i = 0; i < errors[0].size(); ++i) {
-        size_t best = 0;
-        for (size_t k = 1; k < errors.size(); ++k)
-            if (errors[k][i] < errors[best][i]) best = k;
-        maps[best][i] = 1;
+        const double v = double(errors[0][i]) / 2;
+        weights[0][i] = 1;
+        if (!(v > 0) || !std::isfinite(v)) continue;
+        for (size_t k = 1; k < errors.size(); ++k) {
+            const double error = std::max(double(errors[k][i]) - v, kLeastError * v);
+            weights[k][i] = float(v * v / (error * error));
+        }
     }
-    return maps;
+    return weights;
 }
 
-// Each pixel's value: the candidates weighted by their maps, a filtered
+// Each pixel's value: the candidates weighted by their blend weights, a filtered
 // candidate's value being the mean of its two filtered halves; then the splats added back.
 Image blend(const HalfBuffers& h, const NlMeansOutput& fa, const NlMeansOutput& fb,
-            const std::vector<std::vector<float>>& maps) {
+            const std::vector<std::vector<float>>& weights) {
     Image image(h.width, h.height);
     for (size_t i = 0; i < h.mean[0].size(); ++i)
         for (int c = 0; c < 3; ++c) {
-            double value = maps[0][i] * h.mean[c][i], total = maps[0][i];
-            for (size_t k = 1; k < maps.size(); ++k) {
-                value += maps[k][i] * (fa.filtered[k - 1][c][i] + fb.filtered[k - 1][c][i]) / 2;
-                total += maps[k][i];
+            double value = weights[0][i] * h.mean[c][i], total = weights[0][i];
+            for (size_t k = 1; k < weights.size(); ++k) {
+                value += weights[k][i] * (fa.filtered[k - 1][c][i] + fb.filtered[k - 1][c][i]) / 2;
+                total += weights[k][i];
             }
             const double blended = value / total;
             image.rgb[i * 3 + c] = float((std::isfinite(blended) && total > 0 ? blended : h.mean[c][i]) + h.splats[c][i]);
@@ -101,7 +109,7 @@ Image denoise(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPoo
     const NlMeansOutput fb = nl_means({halves.width, halves.height, &halves.b, &halves.half_variance,
                                        features ? &halves.features_b : nullptr, &halves.feature_variance},
                                       usable, pool);
-    return blend(halves, fa, fb, selection_maps(halves, candidate_errors(halves, fa, fb, usable.relative_error_floor), usable.selection_radius));
+    return blend(halves, fa, fb, blend_weights(halves, candidate_errors(halves, fa, fb, usable.relative_error_floor), usable.selection_radius));
 }
 
 }  // namespace glint

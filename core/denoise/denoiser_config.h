@@ -14,11 +14,11 @@ struct DenoiserConfig {
     // an average over 75 values, steady enough at a few samples per pixel, and still follow
     // edges a few pixels wide.
     int patch_radius = 2;
-    // The candidate filters, each a pair of strengths: a colour patch distance of k² times the
-    // two pixels' variance costs the neighbour a weight of e^-1, and so does a feature (AOV)
-    // differing by k_f² times its variance (or feature_floor); 0 leaves that test out. Larger k
-    // smooths more; each pixel then takes the candidate, or its unfiltered value, whose
-    // estimated error is least. Candidates that compare features need the film's AOVs and are
+    // The candidate filters, each a pair of strengths: a colour patch distance of k² times twice
+    // the filtered pixel's variance costs the neighbour a weight of e^-1, and so does a feature
+    // (AOV) differing by k_f² times its variance (or feature_floor); 0 leaves that test out.
+    // Larger k smooths more; each pixel then blends the candidates and its unfiltered value by
+    // their estimated errors. Candidates that compare features need the film's AOVs and are
     // left out without them. As in Rousselle et al. 2013: colour alone; colour and features;
     // features alone (the strongest, for flat regions at few samples).
     struct Candidate {
@@ -29,9 +29,9 @@ struct DenoiserConfig {
     // 1 removes the expected squared difference that noise alone makes.
     float variance_cancel = 1.0f;
     // Half-width of the box over which each candidate's per-pixel error estimate is averaged
-    // before a pixel picks one: one pixel's estimate has one degree of freedom per channel, and
-    // 5×5 (2) gives 75 while still following edges and small bright features; 7×7 let one
-    // noisy pixel's estimate decide for twice as many neighbours.
+    // before the blend: one pixel's estimate has one degree of freedom per channel, and 5×5 (2)
+    // gives 75 while still following edges and small bright features; 7×7 let one noisy
+    // pixel's estimate decide for twice as many neighbours (docs/denoiser.md has the figures).
     int selection_radius = 2;
     // The error estimates are relative: a squared error at a pixel of value v counts divided by
     // v² + this floor (v the least of its candidates), as relMSE weighs it, so that a dark
