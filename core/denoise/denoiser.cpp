@@ -101,7 +101,8 @@ Image denoise(const Film& film, const DenoiserConfig& config, ThreadPool& pool) 
 Image denoise(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPool& pool) {
     DenoiserConfig usable = config;
     if (!halves.has_features())
-        std::erase_if(usable.candidates, [](const DenoiserConfig::Candidate& k) { return k.feature > 0; });
+        std::erase_if(usable.candidates,
+                      [](const DenoiserConfig::Candidate& k) { return k.feature > 0 || k.regression; });
     const bool features = halves.has_features();
     const NlMeansOutput fa = nl_means({halves.width, halves.height, &halves.a, &halves.half_variance,
                                        features ? &halves.features_a : nullptr, &halves.feature_variance},

@@ -20,11 +20,15 @@ struct DenoiserConfig {
     // Larger k smooths more; each pixel then blends the candidates and its unfiltered value by
     // their estimated errors. Candidates that compare features need the film's AOVs and are
     // left out without them. As in Rousselle et al. 2013: colour alone; colour and features;
-    // features alone (the strongest, for flat regions at few samples).
+    // features alone (the strongest, for flat regions at few samples). A candidate with
+    // `regression` fits each pixel's neighbours, weighted so, as a first-order function of the
+    // features (regression.h), and needs the AOVs too: the last, strong colour weights with
+    // the features as regressors rather than as weights.
     struct Candidate {
         float colour = 0, feature = 0;
+        bool regression = false;
     };
-    std::vector<Candidate> candidates = {{0.45f, 0}, {1.0f, 0}, {0.45f, 0.6f}, {0, 0.6f}};
+    std::vector<Candidate> candidates = {{0.45f, 0}, {1.0f, 0}, {0.45f, 0.6f}, {0, 0.6f}, {1.0f, 0, true}};
     // How much of the two pixels' variance the distance takes off (Rousselle et al.'s α):
     // 1 removes the expected squared difference that noise alone makes.
     float variance_cancel = 1.0f;

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "denoise/box_filter.h"
 #include "denoise/half_buffers.h"
+#include "denoise/regression.h"
 
 namespace glint {
 namespace {
@@ -15,14 +17,25 @@ struct Offset {
     int dx, dy;
 };
 
-// The weight sums of one band of rows, per candidate: Σw and Σw·value per channel.
+// The weight sums of one band of rows, per candidate: Σw and Σw·value per channel, and for a
+// candidate that fits a regression, its normal equations.
 struct BandSums {
     std::vector<std::array<std::vector<double>, 4>> sums;
-    BandSums(size_t candidates, size_t pixels) : sums(candidates) {
-        for (auto& s : sums)
-            for (auto& plane : s) plane.assign(pixels, 0.0);
+    std::vector<std::optional<RegressionSums>> fits;
+    BandSums(const DenoiserConfig& config, size_t pixels) : sums(config.candidates.size()), fits(sums.size()) {
+        for (size_t k = 0; k < sums.size(); ++k) {
+            for (auto& plane : sums[k]) plane.assign(pixels, 0.0);
+            if (config.candidates[k].regression) fits[k].emplace(pixels);
+        }
     }
 };
+
+// Pixel q's features less pixel p's, and q's colour: what a regression adds for the pair.
+void add_to_fit(const NlMeansInput& in, size_t p, size_t q, size_t out, double weight, RegressionSums& fit) {
+    std::array<float, kFeatures> delta;
+    for (int j = 0; j < kFeatures; ++j) delta[j] = (*in.features)[j][q] - (*in.features)[j][p];
+    fit.add(out, weight, delta, {(*in.image)[0][q], (*in.image)[1][q], (*in.image)[2][q]});
+}
 
 // Per pixel of rows [y0, y1), for neighbour offset o (clamped at the border): the squared
 // difference of the two pixels, mean over channels, less the share noise explains, and twice
@@ -95,11 +108,13 @@ void add_offset(const NlMeansInput& in, const DenoiserConfig& config, Offset o, 
                 auto& sums = band.sums[k];
                 sums[3][out] += weight;
                 for (int c = 0; c < 3; ++c) sums[c][out] += weight * (*in.image)[c][q];
+                if (band.fits[k]) add_to_fit(in, p, q, out, weight, *band.fits[k]);
             }
         }
 }
 
-// The band's filtered values, with the pixel itself kept where its variance is unknown.
+// The band's filtered values: the weighted mean, or a regression's fit where the candidate has
+// one and it can be solved; the pixel itself where its variance is unknown.
 void finish_band(const NlMeansInput& in, int y0, int y1, const BandSums& band, NlMeansOutput& out) {
     const int w = in.width;
     for (size_t k = 0; k < band.sums.size(); ++k)
@@ -107,8 +122,10 @@ void finish_band(const NlMeansInput& in, int y0, int y1, const BandSums& band, N
             const size_t p = size_t(y0) * w + i;
             const auto& sums = band.sums[k];
             const bool known = (*in.variance)[p] < kUnknownVariance && sums[3][i] > 0;
-            for (int c = 0; c < 3; ++c)
-                out.filtered[k][c][p] = known ? float(sums[c][i] / sums[3][i]) : (*in.image)[c][p];
+            std::array<float, 3> value;
+            for (int c = 0; c < 3; ++c) value[c] = known ? float(sums[c][i] / sums[3][i]) : (*in.image)[c][p];
+            if (known && band.fits[k]) band.fits[k]->solve(i, value);
+            for (int c = 0; c < 3; ++c) out.filtered[k][c][p] = value[c];
         }
 }
 
@@ -124,7 +141,7 @@ NlMeansOutput nl_means(const NlMeansInput& in, const DenoiserConfig& config, Thr
     const size_t bands = size_t(in.height + kBandRows - 1) / kBandRows;
     pool.parallel_for(bands, [&](size_t band_index) {
         const int y0 = int(band_index) * kBandRows, y1 = std::min(in.height, y0 + kBandRows);
-        BandSums band(candidates, size_t(y1 - y0) * in.width);
+        BandSums band(config, size_t(y1 - y0) * in.width);
         for (int dy = -r; dy <= r; ++dy)
             for (int dx = -r; dx <= r; ++dx) add_offset(in, config, {dx, dy}, y0, y1, band);
         finish_band(in, y0, y1, band, out);
