@@ -6,9 +6,11 @@
 namespace glint {
 namespace {
 
-// A ridge of this share of the total weight on the diagonal: a feature that does not vary in
-// the window (a flat wall's normal) gets a slope of 0 instead of a singular system.
-constexpr double kRidge = 1e-3;
+// The slopes' diagonal is raised by this share of itself (a ridge in each feature's own units,
+// so a feature that varies little is not flattened more than one that varies much) and by
+// kFloor of the total weight: a feature that does not vary in the window (a flat wall's normal)
+// gets a slope of 0 instead of a singular system. The intercept is left alone.
+constexpr double kRidge = 1e-3, kFloor = 1e-6;
 
 }  // namespace
 
@@ -33,7 +35,7 @@ bool RegressionSums::solve(size_t i, std::array<float, 3>& colour) const {
     Matrix a;
     for (int r = 0; r < kTerms; ++r)
         for (int c = r; c < kTerms; ++c) a(r, c) = a(c, r) = *s++;
-    a.diagonal().array() += kRidge * a(0, 0);
+    for (int j = 1; j < kTerms; ++j) a(j, j) = a(j, j) * (1 + kRidge) + kFloor * a(0, 0);
     const Eigen::Map<const Eigen::Matrix<double, kTerms, 3>> b(s);
     const Eigen::LDLT<Matrix> ldlt(a);
     if (ldlt.info() != Eigen::Success) return false;
