@@ -103,6 +103,9 @@ Image denoise(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPoo
     if (!halves.has_features())
         std::erase_if(usable.candidates,
                       [](const DenoiserConfig::Candidate& k) { return k.feature > 0 || k.regression; });
+    // A film whose every pixel lacks one half (its first round) has no variance to filter by.
+    const auto known = [](float v) { return v < kUnknownVariance; };
+    if (std::none_of(halves.half_variance.begin(), halves.half_variance.end(), known)) usable.candidates.clear();
     const bool features = halves.has_features();
     const NlMeansOutput fa = nl_means({halves.width, halves.height, &halves.a, &halves.half_variance,
                                        features ? &halves.features_a : nullptr, &halves.feature_variance},
@@ -110,7 +113,8 @@ Image denoise(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPoo
     const NlMeansOutput fb = nl_means({halves.width, halves.height, &halves.b, &halves.half_variance,
                                        features ? &halves.features_b : nullptr, &halves.feature_variance},
                                       usable, pool);
-    return blend(halves, fa, fb, blend_weights(halves, candidate_errors(halves, fa, fb, usable.relative_error_floor), usable.selection_radius));
+    const auto errors = candidate_errors(halves, fa, fb, usable.relative_error_floor);
+    return blend(halves, fa, fb, blend_weights(halves, errors, usable.selection_radius));
 }
 
 }  // namespace glint

@@ -1,6 +1,7 @@
 // A denoised preview of a film, after Rousselle, Knaus and Zwicker 2012 and Rousselle, Manzi
 // and Zwicker 2013 (non-local means on the film's two independent halves, with its AOVs when it
-// has them; docs/denoiser.md): each half is filtered on its own by a few candidate filters, each
+// has them, and with them the first-order regression of Bitterli et al. 2016 as one more
+// candidate; docs/denoiser.md): each half is filtered on its own by a few candidate filters, each
 // result's error is estimated per pixel against the other half, and every pixel blends the
 // candidates and its unfiltered mean by the inverse squares of their estimated errors. As
 // samples grow, the filters' weights shrink with the noise and the unfiltered mean takes over:

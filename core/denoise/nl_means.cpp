@@ -134,6 +134,7 @@ void finish_band(const NlMeansInput& in, int y0, int y1, const BandSums& band, N
 NlMeansOutput nl_means(const NlMeansInput& in, const DenoiserConfig& config, ThreadPool& pool) {
     const size_t pixels = size_t(in.width) * in.height, candidates = config.candidates.size();
     NlMeansOutput out;
+    if (candidates == 0) return out;
     out.filtered.resize(candidates);
     for (Planes& planes : out.filtered)
         for (auto& plane : planes) plane.resize(pixels);
