@@ -133,7 +133,7 @@ TEST_F(Server, AFullQueueGets429WithRetryAfter) {
     start(service);
     const std::string slow = R"({"preset": "cornell", "width": 64, "height": 48, "spp": 65536})";
     const std::string first = post("/jobs", slow, 202)["id"];
-    for (int i = 0; i < 100 && get_json("/jobs/" + first)["state"] == "queued"; ++i) std::this_thread::sleep_for(20ms);
+    for (int i = 0; i < 500 && get_json("/jobs/" + first)["state"] == "queued"; ++i) std::this_thread::sleep_for(20ms);
     const std::string second = post("/jobs", slow, 202)["id"];  // waits in the queue
     auto res = client_->Post("/jobs", slow, "application/json");
     ASSERT_TRUE(res);

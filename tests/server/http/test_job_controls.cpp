@@ -55,18 +55,21 @@ TEST_F(Server, QueuedJobsStartByPriorityAsPatched) {
     ServiceConfig one;
     one.max_running = 1;
     start(one);
+    const auto wait_running = [&](const std::string& id) {
+        for (int i = 0; i < 1000 && get_json("/jobs/" + id)["state"] != "running"; ++i) std::this_thread::sleep_for(10ms);
+        return get_json("/jobs/" + id)["state"] == "running";
+    };
+    // The blocker holds the slot before the others are queued: the queue hands a slot to the
+    // highest priority waiting when it looks, so on a busy machine a blocker not yet started
+    // would lose it to `high`.
     const std::string blocker = post("/jobs", kEndless + "}", 202)["id"];
+    std::string running = blocker;
+    ASSERT_TRUE(wait_running(running));
     const std::string low = post("/jobs", kEndless + R"(, "priority": -1})", 202)["id"];
     const std::string mid = post("/jobs", kEndless + R"(, "priority": 2})", 202)["id"];
     const std::string high = post("/jobs", kEndless + R"(, "priority": 5})", 202)["id"];
     const std::string patched = post("/jobs", kEndless + "}", 202)["id"];
     EXPECT_EQ(patch("/jobs/" + patched, R"({"priority": 3})", 200)["priority"], 3);
-    const auto wait_running = [&](const std::string& id) {
-        for (int i = 0; i < 1000 && get_json("/jobs/" + id)["state"] != "running"; ++i) std::this_thread::sleep_for(10ms);
-        return get_json("/jobs/" + id)["state"] == "running";
-    };
-    std::string running = blocker;
-    ASSERT_TRUE(wait_running(running));
     for (const std::string& next : {high, patched, mid, low}) {
         client_->Delete(("/jobs/" + running).c_str());
         wait_until_final(running);

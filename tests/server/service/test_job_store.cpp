@@ -421,7 +421,7 @@ TEST_F(Store, PrioritiesAndStopReasonsSurviveARestart) {
     EXPECT_EQ(server.get_json("/jobs/" + low)["priority"], 1);
     // The blocker was running before the kill, but the queue goes by priority: the highest first.
     json running;
-    for (int i = 0; i < 500 && running.is_null(); ++i) {
+    for (int i = 0; i < 1000 && running.is_null(); ++i) {
         for (const auto& id : {blocker, low, high})
             if (server.get_json("/jobs/" + id)["state"] == "running") running = id;
         std::this_thread::sleep_for(10ms);
