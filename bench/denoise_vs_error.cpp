@@ -6,10 +6,14 @@
 // bench/plot_denoise.py (columns: scene, width, height, spp, render CPU s so far, RMSE and relMSE
 // of the unbiased image, of the denoised one, the denoiser's CPU s and wall s); the images of
 // one rung are written as PNGs to look at, and as PFMs, with the reference as reference.png.
+// With --seeds N the ladder is rendered N times, each with its own seed, and every figure is the
+// mean over them (RMSE the root of the mean squared error): one 16 spp image of a scene with
+// fireflies can be off its expected relMSE by 1.5×.
 #include <CLI/CLI.hpp>
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -29,7 +33,7 @@ struct Options {
     std::string scene, out;
     int width = 256, height = 192;
     unsigned threads = 2;
-    uint32_t reference_spp = 4096, max_spp = 1024, png_spp = 16;
+    uint32_t reference_spp = 4096, max_spp = 1024, png_spp = 16, seeds = 1;
     DenoiserConfig config;  // the defaults unless options change them
     bool colour_only = false;
 };
@@ -50,27 +54,54 @@ double rel_mse(const Image& image, const Image& ref) {
     return total / double(ref.rgb.size());
 }
 
-// One rung: the film as it is, denoised, both measured; PNGs of both at png_spp. `render_cpu`:
-// the CPU seconds the render has taken so far.
-void measure(const Options& o, const RenderJob& job, uint32_t spp, double render_cpu, const Image& ref,
-             ThreadPool& pool) {
+// One rung's figures, summed over the seeds: squared errors, times.
+struct Rung {
+    double render_cpu = 0, mse = 0, relmse = 0, mse_denoised = 0, relmse_denoised = 0, denoise_cpu = 0, denoise_wall = 0;
+};
+
+// One rung of one seed: the film as it is, denoised, both measured and added to `rung`; PNGs and
+// PFMs of both at png_spp for the first seed. `render_cpu`: the CPU seconds the render has taken
+// so far.
+void measure(const Options& o, const RenderJob& job, uint32_t spp, bool first_seed, const Image& ref,
+             ThreadPool& pool, Rung& rung) {
     const double cpu0 = cpu_seconds();
     const auto wall0 = std::chrono::steady_clock::now();
     const Image denoised = denoise(job.film(), o.config, pool);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    const double cpu = cpu_seconds() - cpu0;
+    rung.denoise_wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    rung.denoise_cpu += cpu_seconds() - cpu0;
     const Image image = job.film().mean();
+    rung.mse += rmse(image, ref) * rmse(image, ref);
+    rung.relmse += rel_mse(image, ref);
+    rung.mse_denoised += rmse(denoised, ref) * rmse(denoised, ref);
+    rung.relmse_denoised += rel_mse(denoised, ref);
+    if (spp != o.png_spp || !first_seed) return;
     const std::string name = fs::path(o.scene).stem().string();
-    std::printf("%s,%d,%d,%u,%.4f,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f\n", name.c_str(), o.width, o.height, spp, render_cpu,
-                rmse(image, ref), rel_mse(image, ref), rmse(denoised, ref), rel_mse(denoised, ref), cpu, wall);
-    std::fflush(stdout);
-    if (spp != o.png_spp) return;
     const std::string stem = (fs::path(o.out) / (name + "-" + std::to_string(spp) + "spp")).string();
     write_file(stem + ".png", encode_png(image, job.settings().encoding));
     write_file(stem + ".denoised.png", encode_png(denoised, job.settings().encoding));
     write_file(stem + ".pfm", encode_pfm(image));
     write_file(stem + ".denoised.pfm", encode_pfm(denoised));
     write_file((fs::path(o.out) / "reference.png").string(), encode_png(ref, job.settings().encoding));
+}
+
+// The ladder of one seed, its figures added to `rungs` (one per rung, doubling from one round).
+void render_ladder(const Options& o, LoadedScene loaded, uint32_t seed_index, const Image& ref, ThreadPool& pool,
+                   std::vector<Rung>& rungs) {
+    loaded.settings.spp = o.max_spp;
+    loaded.settings.aovs = !o.colour_only;
+    loaded.settings.seed += seed_index;
+    RenderJob job(loaded.scene, loaded.settings);
+    const uint32_t round = samples_per_round(loaded.settings.filter);
+    double render_cpu = 0;
+    size_t r = 0;
+    for (uint32_t done = 0, next = round; next <= o.max_spp; done = next, next *= 2, ++r) {
+        const double start = cpu_seconds();
+        job.render_pass(pool, done, next);
+        render_cpu += cpu_seconds() - start;
+        if (rungs.size() <= r) rungs.emplace_back();
+        rungs[r].render_cpu += render_cpu;
+        measure(o, job, next, seed_index == 0, ref, pool, rungs[r]);
+    }
 }
 
 }  // namespace
@@ -85,7 +116,9 @@ int main(int argc, char** argv) {
     app.add_option("--threads", o.threads);
     app.add_option("--reference-spp", o.reference_spp);
     app.add_option("--max-spp", o.max_spp, "Top of the ladder (doubling from one round)");
-    app.add_option("--png-spp", o.png_spp, "The rung whose images are written as PNGs");
+    app.add_option("--png-spp", o.png_spp, "The rung whose images are written as PNGs (of the first seed)");
+    app.add_option("--seeds", o.seeds, "Renders of the ladder, each with its own seed: the figures are their means")
+        ->check(CLI::Range(1, 64));
     app.add_option("--window-radius", o.config.window_radius);
     app.add_option("--patch-radius", o.config.patch_radius);
     app.add_option("--variance-cancel", o.config.variance_cancel);
@@ -97,16 +130,17 @@ int main(int argc, char** argv) {
     loaded.settings.width = o.width;
     loaded.settings.height = o.height;
     const Image ref = reference_image(loaded, o.out, o.reference_spp, o.threads);
-    loaded.settings.spp = o.max_spp;
-    loaded.settings.aovs = !o.colour_only;
     ThreadPool pool(o.threads);
-    RenderJob job(loaded.scene, loaded.settings);
-    const uint32_t round = samples_per_round(loaded.settings.filter);
-    double render_cpu = 0;
-    for (uint32_t done = 0, next = round; next <= o.max_spp; done = next, next *= 2) {
-        const double start = cpu_seconds();
-        job.render_pass(pool, done, next);
-        render_cpu += cpu_seconds() - start;
-        measure(o, job, next, render_cpu, ref, pool);
+    std::vector<Rung> rungs;
+    for (uint32_t seed = 0; seed < o.seeds; ++seed) render_ladder(o, loaded, seed, ref, pool, rungs);
+    // RMSE: the root of the seeds' mean squared error; relMSE and times: their means.
+    const std::string name = fs::path(o.scene).stem().string();
+    const double n = o.seeds;
+    uint32_t spp = samples_per_round(loaded.settings.filter);
+    for (const Rung& r : rungs) {
+        std::printf("%s,%d,%d,%u,%.4f,%.6g,%.6g,%.6g,%.6g,%.4f,%.4f\n", name.c_str(), o.width, o.height, spp,
+                    r.render_cpu / n, std::sqrt(r.mse / n), r.relmse / n, std::sqrt(r.mse_denoised / n),
+                    r.relmse_denoised / n, r.denoise_cpu / n, r.denoise_wall / n);
+        spp *= 2;
     }
 }

@@ -260,6 +260,7 @@ ui.preset.addEventListener("change", loadScene);
 ui.render.addEventListener("click", startRender);
 ui.cancel.addEventListener("click", cancelRender);
 ui.image.addEventListener("load", applyZoom);
+ui.image.addEventListener("error", retryDenoised);
 ui.regionMode.addEventListener("click", toggleRegionMode);
 ui.samplesView.addEventListener("click", toggleSamplesView);
 ui.denoised.addEventListener("click", toggleDenoised);

@@ -50,6 +50,14 @@ function showImage(status) {
   ui.image.src = withToken(`${status.urls.denoised}?frame=${status.frame}`);
 }
 
+// A denoised frame the server refused (429: it is making as many previews as it may) is asked
+// for again a moment later.
+function retryDenoised() {
+  if (!denoisedShown() || !denoisedFrame) return;
+  denoisedFrame = 0;
+  setTimeout(() => { if (denoisedShown() && shown) showImage(shown.status); }, 2000);
+}
+
 // The image pixel under a pointer, in the shown image's pixels (fractional; may lie outside).
 // The bounding box already holds the zoom, the scroll and the centring.
 function imagePoint(e) {

@@ -55,6 +55,10 @@ std::function<int()> add_serve_command(CLI::App& app) {
              integers(1, 256));
     in_range(cmd->add_option("--max-queued", o->service.max_queued, "Jobs waiting before new ones get 429 (default 16)"),
              integers(1, 1024));
+    // A denoised preview takes every core while it is made (service/denoise_gate.h).
+    in_range(cmd->add_option("--max-denoising", o->service.max_denoising,
+                             "Denoised previews made at once before requests for more get 429 (default 2)"),
+             integers(1, 64));
     cmd->add_option("--store", o->service.store.dir, "Folder that keeps every job (scene, state, film) across restarts");
     in_range(cmd->add_option("--checkpoint-interval", o->service.store.checkpoint_interval,
                              "Seconds between checkpoints of a running job's film (default 5; 0: after every pass)"),

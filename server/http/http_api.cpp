@@ -304,7 +304,12 @@ void HttpApi::install_image_routes(httplib::Server& server) {
     server.Get(job + "/image.denoised.png", [this](const Req& req, Res& res) {
         auto j = job_or_404(req, res);
         if (!j) return;
-        const auto png = j->denoised_png();
+        std::shared_ptr<const std::vector<uint8_t>> png;
+        try {
+            png = j->denoised_png(jobs_.denoise_gate());
+        } catch (const ServiceError& e) {
+            return send_error(res, e);  // busy: 429 with Retry-After
+        }
         if (!png) return send_error(res, 409, "no pass has finished yet");
         res.set_content(reinterpret_cast<const char*>(png->data()), png->size(), "image/png");
     });

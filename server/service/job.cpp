@@ -7,6 +7,7 @@
 
 #include "denoise/denoiser.h"
 #include "io/fingerprint.h"
+#include "service/errors.h"
 #include "service/priority.h"
 
 namespace glint {
@@ -380,17 +381,35 @@ void Job::fail(const std::string& error) {
     spdlog::error("job {} failed: {}", id_, error);
 }
 
-std::shared_ptr<const std::vector<uint8_t>> Job::denoised_png() const {
+std::shared_ptr<const std::vector<uint8_t>> Job::denoised_png(DenoiseGate& gate) const {
     const JobSnapshot s = snapshot();
     if (!s.halves) return nullptr;
-    std::lock_guard lock(denoised_mutex_);
-    if (denoised_frame_ != s.frame || !denoised_png_) {
-        ThreadPool pool(0);  // the request's own threads: the render's pool belongs to the render
-        denoised_png_ = std::make_shared<const std::vector<uint8_t>>(
-            encode_png(denoise(*s.halves, DenoiserConfig{}, pool), settings().encoding));
-        denoised_frame_ = s.frame;
+    {
+        std::lock_guard lock(denoised_mutex_);
+        if (denoised_frame_ == s.frame && denoised_png_) return denoised_png_;
+        if (denoising_) throw Busy("job " + id_ + "'s denoised preview is being made: try again when it is done");
+        if (!gate.try_enter())
+            throw Busy("the server is making " + std::to_string(gate.limit()) +
+                       " denoised previews already (its limit): try again later");
+        denoising_ = true;
     }
-    return denoised_png_;
+    // However the denoiser ends: the place goes back, and a finished frame is kept.
+    struct Finish {
+        const Job& job;
+        DenoiseGate& gate;
+        uint64_t frame;
+        std::shared_ptr<const std::vector<uint8_t>> png;
+        ~Finish() {
+            std::lock_guard lock(job.denoised_mutex_);
+            job.denoising_ = false;
+            gate.leave();
+            if (png) job.denoised_png_ = png, job.denoised_frame_ = frame;
+        }
+    } finish{*this, gate, s.frame, nullptr};
+    ThreadPool pool(0);  // the request's own threads: the render's pool belongs to the render
+    finish.png = std::make_shared<const std::vector<uint8_t>>(
+        encode_png(denoise(*s.halves, DenoiserConfig{}, pool), settings().encoding));
+    return finish.png;
 }
 
 JobSnapshot Job::snapshot() const {

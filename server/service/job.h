@@ -15,6 +15,7 @@
 #include "io/partial_file.h"
 #include "io/scene_loader.h"
 #include "render/renderer.h"
+#include "service/denoise_gate.h"
 #include "service/job_state.h"
 #include "service/job_store.h"
 #include "service/slurm_farm.h"
@@ -90,8 +91,10 @@ public:
 
     JobSnapshot snapshot() const;
     // The latest frame denoised (denoise/denoiser.h), as PNG; made on the first request for a
-    // frame and kept until the next. Null until a pass has finished.
-    std::shared_ptr<const std::vector<uint8_t>> denoised_png() const;
+    // frame, inside `gate`, and kept until the next. Null until a pass has finished. Throws Busy
+    // (service/errors.h) when the frame is not made yet and the gate is full or this job's
+    // frame is being made for another request: a request never waits for a preview.
+    std::shared_ptr<const std::vector<uint8_t>> denoised_png(DenoiseGate& gate) const;
     // Waits until there is a frame newer than `after`, the job is final, or `timeout` passes.
     JobSnapshot wait(uint64_t after, std::chrono::milliseconds timeout) const;
 
@@ -139,7 +142,8 @@ private:
     mutable std::mutex mutex_;
     mutable std::condition_variable changed_;
     JobSnapshot snapshot_;
-    mutable std::mutex denoised_mutex_;  // held while a denoised frame is made: made once
+    mutable std::mutex denoised_mutex_;  // guards the three below, never held while denoising
+    mutable bool denoising_ = false;     // a request is making this job's denoised frame
     mutable uint64_t denoised_frame_ = 0;
     mutable std::shared_ptr<const std::vector<uint8_t>> denoised_png_;
 };

@@ -25,7 +25,8 @@ JobManager::JobManager(ThreadPool& pool, const ServiceConfig& config)
     : pool_(pool),
       config_(config),
       store_(config.store.dir.empty() ? nullptr : std::make_unique<JobStore>(config.store)),
-      farm_(config.farm.slurm ? std::make_unique<SlurmFarm>(config.farm, config.scenes) : nullptr) {
+      farm_(config.farm.slurm ? std::make_unique<SlurmFarm>(config.farm, config.scenes) : nullptr),
+      denoise_gate_(config.max_denoising) {
     try {
         for (unsigned i = 0; i < config_.max_running; ++i) slots_.emplace_back([this] { slot(); });
     } catch (const std::system_error& e) {  // a thread the system refuses: an error, not an abort

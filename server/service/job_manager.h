@@ -39,6 +39,8 @@ public:
     std::vector<std::shared_ptr<Job>> list() const;  // oldest first
     size_t running() const;
     size_t queued() const;
+    // Bounds the denoised previews made at once (config.max_denoising): Job::denoised_png's.
+    DenoiseGate& denoise_gate() { return denoise_gate_; }
     // Cancels every job and stops taking new ones; with a store, unfinished jobs are suspended
     // instead, to resume on restart.
     void shutdown();
@@ -56,6 +58,7 @@ private:
     ServiceConfig config_;
     std::unique_ptr<JobStore> store_;
     std::unique_ptr<SlurmFarm> farm_;  // with config.farm.slurm: every job renders there
+    DenoiseGate denoise_gate_;
     mutable std::mutex mutex_;
     std::condition_variable work_;
     std::deque<std::shared_ptr<Job>> queue_;

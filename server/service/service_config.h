@@ -57,6 +57,9 @@ struct ServiceConfig {
     // Jobs waiting for a slot; beyond, a submission is refused as busy (429), so a flood of
     // requests cannot hold unbounded memory in queued scenes.
     size_t max_queued = 16;
+    // Denoised previews made at once (service/denoise_gate.h); beyond, a request for one is
+    // refused as busy (429). Each takes every core while it is made.
+    unsigned max_denoising = 2;
     // Finished jobs kept for their images; the oldest are forgotten beyond, bounding memory.
     size_t max_finished = 64;
     // What one job may ask for: tighter than the scene loader's defaults, since every client

@@ -68,6 +68,7 @@ check "--region beyond the image names the bounds" \
 check "--region writes the window: a 5x4 PFM" grep -qa "^5 4$" "$work/window.pfm"
 refused "--max-jobs: must be an integer in [1, 256]" serve --max-jobs 100000
 refused "--max-queued: must be an integer in [1, 1024]" serve --max-queued 0
+refused "--max-denoising: must be an integer in [1, 64]" serve --max-denoising 0
 refused "--store-limit: must be an integer in [1, 9223372036854775807]" serve --store-limit -1
 refused "--farm-parts: must be an integer in [1, 10000]" serve --farm-parts 0
 refused "--repeat: must be an integer in [1, 1000]" trace-rays mesh.obj rays.rays --repeat 0
