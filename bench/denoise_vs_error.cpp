@@ -119,12 +119,15 @@ int main(int argc, char** argv) {
     app.add_option("--png-spp", o.png_spp, "The rung whose images are written as PNGs (of the first seed)");
     app.add_option("--seeds", o.seeds, "Renders of the ladder, each with its own seed: the figures are their means")
         ->check(CLI::Range(1, 64));
-    app.add_option("--window-radius", o.config.window_radius);
-    app.add_option("--patch-radius", o.config.patch_radius);
+    app.add_option("--window-radius", o.config.filters[0].window_radius, "The wide filter's");
+    app.add_option("--patch-radius", o.config.filters[0].patch_radius, "The wide filter's");
+    bool wide_only = false;
+    app.add_flag("--wide-only", wide_only, "Leave the local filter out (the denoiser before it had one)");
     app.add_option("--variance-cancel", o.config.variance_cancel);
     app.add_option("--selection-radius", o.config.selection_radius);
     app.add_flag("--colour-only", o.colour_only, "Render without AOVs: the denoiser compares colours only");
     CLI11_PARSE(app, argc, argv);
+    if (wide_only) o.config.filters.resize(1);
     fs::create_directories(o.out);
     LoadedScene loaded = load_scene(o.scene);
     loaded.settings.width = o.width;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 
 #include "denoise/box_filter.h"
 #include "denoise/nl_means.h"
@@ -92,6 +93,32 @@ Image blend(const HalfBuffers& h, const NlMeansOutput& fa, const NlMeansOutput& 
     return image;
 }
 
+// What of the config this film can use: without AOVs, no candidate that needs them; in a film's
+// first round (no pixel has both halves, so no variance to filter by), none at all.
+DenoiserConfig usable_config(const HalfBuffers& halves, DenoiserConfig config) {
+    const auto known = [](float v) { return v < kUnknownVariance; };
+    const bool any_known = std::any_of(halves.half_variance.begin(), halves.half_variance.end(), known);
+    for (DenoiserConfig::Filter& filter : config.filters) {
+        if (!halves.has_features())
+            std::erase_if(filter.candidates,
+                          [](const DenoiserConfig::Candidate& k) { return k.feature > 0 || k.regression; });
+        if (!any_known) filter.candidates.clear();
+    }
+    return config;
+}
+
+// One half filtered by every candidate of every filter, in the config's order.
+NlMeansOutput filter_half(const HalfBuffers& h, const Planes& half, const std::vector<std::vector<float>>* features,
+                          const DenoiserConfig& config, ThreadPool& pool) {
+    NlMeansOutput out;
+    for (const DenoiserConfig::Filter& filter : config.filters) {
+        NlMeansOutput part = nl_means({h.width, h.height, &half, &h.half_variance, features, &h.feature_variance},
+                                      filter, config, pool);
+        std::move(part.filtered.begin(), part.filtered.end(), std::back_inserter(out.filtered));
+    }
+    return out;
+}
+
 }  // namespace
 
 Image denoise(const Film& film, const DenoiserConfig& config, ThreadPool& pool) {
@@ -99,20 +126,10 @@ Image denoise(const Film& film, const DenoiserConfig& config, ThreadPool& pool) 
 }
 
 Image denoise(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPool& pool) {
-    DenoiserConfig usable = config;
-    if (!halves.has_features())
-        std::erase_if(usable.candidates,
-                      [](const DenoiserConfig::Candidate& k) { return k.feature > 0 || k.regression; });
-    // A film whose every pixel lacks one half (its first round) has no variance to filter by.
-    const auto known = [](float v) { return v < kUnknownVariance; };
-    if (std::none_of(halves.half_variance.begin(), halves.half_variance.end(), known)) usable.candidates.clear();
+    const DenoiserConfig usable = usable_config(halves, config);
     const bool features = halves.has_features();
-    const NlMeansOutput fa = nl_means({halves.width, halves.height, &halves.a, &halves.half_variance,
-                                       features ? &halves.features_a : nullptr, &halves.feature_variance},
-                                      usable, pool);
-    const NlMeansOutput fb = nl_means({halves.width, halves.height, &halves.b, &halves.half_variance,
-                                       features ? &halves.features_b : nullptr, &halves.feature_variance},
-                                      usable, pool);
+    const NlMeansOutput fa = filter_half(halves, halves.a, features ? &halves.features_a : nullptr, usable, pool);
+    const NlMeansOutput fb = filter_half(halves, halves.b, features ? &halves.features_b : nullptr, usable, pool);
     const auto errors = candidate_errors(halves, fa, fb, usable.relative_error_floor);
     return blend(halves, fa, fb, blend_weights(halves, errors, usable.selection_radius));
 }

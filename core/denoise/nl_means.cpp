@@ -22,10 +22,10 @@ struct Offset {
 struct BandSums {
     std::vector<std::array<std::vector<double>, 4>> sums;
     std::vector<std::optional<RegressionSums>> fits;
-    BandSums(const DenoiserConfig& config, size_t pixels) : sums(config.candidates.size()), fits(sums.size()) {
+    BandSums(const DenoiserConfig::Filter& filter, size_t pixels) : sums(filter.candidates.size()), fits(sums.size()) {
         for (size_t k = 0; k < sums.size(); ++k) {
             for (auto& plane : sums[k]) plane.assign(pixels, 0.0);
-            if (config.candidates[k].regression) fits[k].emplace(pixels);
+            if (filter.candidates[k].regression) fits[k].emplace(pixels);
         }
     }
 };
@@ -44,8 +44,8 @@ void add_to_fit(const NlMeansInput& in, size_t p, size_t q, size_t out, double w
 // neighbour made very noisy by a firefly looks like anything and a quiet dark pixel takes a share
 // of its energy (a halo the error estimates then keep where the firefly's own error dominates
 // the box they average over), while a noisy pixel still takes its quieter neighbours.
-void patch_terms(const NlMeansInput& in, const DenoiserConfig& config, Offset o, int y0, int y1,
-                 std::vector<float>& distance, std::vector<float>& variance) {
+void patch_terms(const NlMeansInput& in, const DenoiserConfig::Filter& filter, const DenoiserConfig& config, Offset o,
+                 int y0, int y1, std::vector<float>& distance, std::vector<float>& variance) {
     const int w = in.width;
     const auto& var = *in.variance;
     distance.resize(size_t(y1 - y0) * w);
@@ -63,8 +63,8 @@ void patch_terms(const NlMeansInput& in, const DenoiserConfig& config, Offset o,
             distance[i] = d - config.variance_cancel * (var[p] + std::min(var[p], var[q]));
             variance[i] = 2 * var[p];
         }
-    distance = box_filter(distance, w, y1 - y0, config.patch_radius);
-    variance = box_filter(variance, w, y1 - y0, config.patch_radius);
+    distance = box_filter(distance, w, y1 - y0, filter.patch_radius);
+    variance = box_filter(variance, w, y1 - y0, filter.patch_radius);
 }
 
 // The largest over the feature planes of their squared difference between pixels p and q, less
@@ -91,20 +91,20 @@ double candidate_weight(const DenoiserConfig::Candidate& k, float colour_distanc
 }
 
 // Adds neighbour offset o's weighted values to the band [y0, y1)'s sums.
-void add_offset(const NlMeansInput& in, const DenoiserConfig& config, Offset o, int y0, int y1,
-                BandSums& band) {
-    const int w = in.width, r = config.patch_radius;
+void add_offset(const NlMeansInput& in, const DenoiserConfig::Filter& filter, const DenoiserConfig& config, Offset o,
+                int y0, int y1, BandSums& band) {
+    const int w = in.width, r = filter.patch_radius;
     const int ey0 = std::max(0, y0 - r), ey1 = std::min(in.height, y1 + r);
     std::vector<float> distance, variance;
-    patch_terms(in, config, o, ey0, ey1, distance, variance);
+    patch_terms(in, filter, config, o, ey0, ey1, distance, variance);
     for (int y = std::max(y0, -o.dy); y < std::min(y1, in.height - o.dy); ++y)
         for (int x = std::max(0, -o.dx); x < std::min(w, w - o.dx); ++x) {
             const size_t q = size_t(y + o.dy) * w + x + o.dx, i = size_t(y - ey0) * w + x;
             if ((*in.variance)[q] >= kUnknownVariance) continue;
             const size_t out = size_t(y - y0) * w + x, p = size_t(y) * w + x;
             const float feature = in.features ? feature_distance(in, config.feature_floor, p, q) : 0;
-            for (size_t k = 0; k < config.candidates.size(); ++k) {
-                const double weight = candidate_weight(config.candidates[k], distance[i], variance[i], feature);
+            for (size_t k = 0; k < filter.candidates.size(); ++k) {
+                const double weight = candidate_weight(filter.candidates[k], distance[i], variance[i], feature);
                 auto& sums = band.sums[k];
                 sums[3][out] += weight;
                 for (int c = 0; c < 3; ++c) sums[c][out] += weight * (*in.image)[c][q];
@@ -131,20 +131,21 @@ void finish_band(const NlMeansInput& in, int y0, int y1, const BandSums& band, N
 
 }  // namespace
 
-NlMeansOutput nl_means(const NlMeansInput& in, const DenoiserConfig& config, ThreadPool& pool) {
-    const size_t pixels = size_t(in.width) * in.height, candidates = config.candidates.size();
+NlMeansOutput nl_means(const NlMeansInput& in, const DenoiserConfig::Filter& filter, const DenoiserConfig& config,
+                       ThreadPool& pool) {
+    const size_t pixels = size_t(in.width) * in.height, candidates = filter.candidates.size();
     NlMeansOutput out;
     if (candidates == 0) return out;
     out.filtered.resize(candidates);
     for (Planes& planes : out.filtered)
         for (auto& plane : planes) plane.resize(pixels);
-    const int r = config.window_radius;
+    const int r = filter.window_radius;
     const size_t bands = size_t(in.height + kBandRows - 1) / kBandRows;
     pool.parallel_for(bands, [&](size_t band_index) {
         const int y0 = int(band_index) * kBandRows, y1 = std::min(in.height, y0 + kBandRows);
-        BandSums band(config, size_t(y1 - y0) * in.width);
+        BandSums band(filter, size_t(y1 - y0) * in.width);
         for (int dy = -r; dy <= r; ++dy)
-            for (int dx = -r; dx <= r; ++dx) add_offset(in, config, {dx, dy}, y0, y1, band);
+            for (int dx = -r; dx <= r; ++dx) add_offset(in, filter, config, {dx, dy}, y0, y1, band);
         finish_band(in, y0, y1, band, out);
     });
     return out;

@@ -29,10 +29,12 @@ struct NlMeansInput {
 };
 
 struct NlMeansOutput {
-    std::vector<Planes> filtered;  // one per candidate in the config
+    std::vector<Planes> filtered;  // one per candidate of the filter
 };
 
-// Deterministic: each pixel's sums are added in one fixed order, whatever the pool's size.
-NlMeansOutput nl_means(const NlMeansInput& input, const DenoiserConfig& config, ThreadPool& pool);
+// The filter's candidates, with the config's variance_cancel and feature_floor. Deterministic:
+// each pixel's sums are added in one fixed order, whatever the pool's size.
+NlMeansOutput nl_means(const NlMeansInput& input, const DenoiserConfig::Filter& filter, const DenoiserConfig& config,
+                       ThreadPool& pool);
 
 }  // namespace glint
