@@ -34,7 +34,7 @@ struct DenoiserConfig {
     //   grows with the window's square.
     // - Local: a 7×7 window and 3×3 patches, for edges and objects a few pixels wide, where a
     //   wide window finds few neighbours that are alike and a 5×5 patch straddles the edge. At
-    //   16 spp the blend with both lowered the relMSE on five scenes of seven, by up to a fifth,
+    //   16 spp the blend with both lowered the relMSE on five scenes of seven, by up to a sixth,
     //   for a quarter more time (docs/denoiser.md).
     static std::vector<Candidate> standard_candidates() {
         return {{0.45f, 0}, {1.0f, 0}, {0.45f, 0.6f}, {0, 0.6f}, {1.0f, 0, true}};
