@@ -286,6 +286,19 @@ void HttpApi::install_job_routes(httplib::Server& server) {
     });
 }
 
+// The denoised preview: made from the frame on request (docs/denoiser.md), never in place of
+// image.png; 429 with Retry-After when the service makes as many as it may.
+void HttpApi::denoised(const std::shared_ptr<Job>& job, httplib::Response& res) {
+    std::shared_ptr<const std::vector<uint8_t>> png;
+    try {
+        png = job->denoised_png(jobs_.denoise_gate());
+    } catch (const ServiceError& e) {
+        return send_error(res, e);
+    }
+    if (!png) return send_error(res, 409, "no pass has finished yet");
+    res.set_content(reinterpret_cast<const char*>(png->data()), png->size(), "image/png");
+}
+
 // A job's latest frame: PNG, its denoised preview, PFM, EXR (with the film's layers), and a
 // thumbnail for lists of jobs.
 void HttpApi::install_image_routes(httplib::Server& server) {
@@ -299,19 +312,8 @@ void HttpApi::install_image_routes(httplib::Server& server) {
         if (!s.png) return send_error(res, 409, "no pass has finished yet");
         res.set_content(reinterpret_cast<const char*>(s.png->data()), s.png->size(), "image/png");
     });
-    // The denoised preview: made from the frame on request (docs/denoiser.md), never in place
-    // of image.png.
     server.Get(job + "/image.denoised.png", [this](const Req& req, Res& res) {
-        auto j = job_or_404(req, res);
-        if (!j) return;
-        std::shared_ptr<const std::vector<uint8_t>> png;
-        try {
-            png = j->denoised_png(jobs_.denoise_gate());
-        } catch (const ServiceError& e) {
-            return send_error(res, e);  // busy: 429 with Retry-After
-        }
-        if (!png) return send_error(res, 409, "no pass has finished yet");
-        res.set_content(reinterpret_cast<const char*>(png->data()), png->size(), "image/png");
+        if (auto j = job_or_404(req, res)) denoised(j, res);
     });
     server.Get(job + "/image.pfm", [this](const Req& req, Res& res) {
         auto j = job_or_404(req, res);

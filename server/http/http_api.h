@@ -36,6 +36,7 @@ private:
     void patch(const httplib::Request& req, httplib::Response& res);
     void stream(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res);
     void events(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res);
+    void denoised(const std::shared_ptr<Job>& job, httplib::Response& res);
     std::shared_ptr<Job> job_or_404(const httplib::Request& req, httplib::Response& res) const;
     std::shared_ptr<Job> accept(const httplib::Request& req, httplib::Response& res);
     bool admit_stream(const httplib::Request& req, httplib::Response& res);
