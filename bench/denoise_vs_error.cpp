@@ -125,6 +125,7 @@ int main(int argc, char** argv) {
     app.add_flag("--wide-only", wide_only, "Leave the local filter out (the denoiser before it had one)");
     app.add_option("--variance-cancel", o.config.variance_cancel);
     app.add_option("--selection-radius", o.config.selection_radius);
+    app.add_option("--relative-error-floor", o.config.relative_error_floor);
     app.add_flag("--colour-only", o.colour_only, "Render without AOVs: the denoiser compares colours only");
     CLI11_PARSE(app, argc, argv);
     if (wide_only) o.config.filters.resize(1);
