@@ -389,8 +389,8 @@ std::shared_ptr<const std::vector<uint8_t>> Job::denoised_png(DenoiseGate& gate)
         if (denoised_frame_ == s.frame && denoised_png_) return denoised_png_;
         if (denoising_) throw Busy("job " + id_ + "'s denoised preview is being made: try again when it is done");
         if (!gate.try_enter())
-            throw Busy("the server is making " + std::to_string(gate.limit()) +
-                       " denoised previews already (its limit): try again later");
+            throw Busy("the server is already making as many denoised previews as it may at once (" +
+                       std::to_string(gate.limit()) + "): try again later");
         denoising_ = true;
     }
     // However the denoiser ends: the place goes back, and a finished frame is kept.
