@@ -70,9 +70,10 @@ void measure(const Options& o, const RenderJob& job, uint32_t spp, bool first_se
     rung.denoise_wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     rung.denoise_cpu += cpu_seconds() - cpu0;
     const Image image = job.film().mean();
-    rung.mse += rmse(image, ref) * rmse(image, ref);
+    const double error = rmse(image, ref), error_denoised = rmse(denoised, ref);
+    rung.mse += error * error;
     rung.relmse += rel_mse(image, ref);
-    rung.mse_denoised += rmse(denoised, ref) * rmse(denoised, ref);
+    rung.mse_denoised += error_denoised * error_denoised;
     rung.relmse_denoised += rel_mse(denoised, ref);
     if (spp != o.png_spp || !first_seed) return;
     const std::string name = fs::path(o.scene).stem().string();

@@ -403,7 +403,9 @@ std::shared_ptr<const std::vector<uint8_t>> Job::denoised_png(DenoiseGate& gate)
             std::lock_guard lock(job.denoised_mutex_);
             job.denoising_ = false;
             gate.leave();
-            if (png) job.denoised_png_ = png, job.denoised_frame_ = frame;
+            if (!png) return;
+            job.denoised_png_ = png;
+            job.denoised_frame_ = frame;
         }
     } finish{*this, gate, s.frame, nullptr};
     ThreadPool pool(0);  // the request's own threads: the render's pool belongs to the render
