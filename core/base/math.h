@@ -94,6 +94,7 @@ struct Frame {
         return {{1 + sign * n.x * n.x * a, sign * b, -sign * n.x}, {b, sign + n.y * n.y * a, -n.y}, n};
     }
     Vec3 to_world(const Vec3& v) const { return s * v.x + t * v.y + n * v.z; }
+    Vec3 to_local(const Vec3& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
 };
 
 }  // namespace glint

@@ -29,6 +29,12 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
         h.vec(m.albedo);
         h.value(m.ior);
         h.vec(m.emission);
+        // Left out at their defaults, so that smallpt's materials keep their fingerprints.
+        if (m.roughness != 0 || m.metallic != 0 || m.fresnel != FresnelModel::schlick) {
+            h.value(m.roughness);
+            h.value(m.metallic);
+            h.value(m.fresnel);
+        }
     }
     h.value(settings.width);
     h.value(settings.height);

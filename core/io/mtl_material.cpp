@@ -2,7 +2,9 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 
 namespace glint {
 namespace {
@@ -49,6 +51,21 @@ bool is_mirror(const tinyobj::material_t& mtl) {
     return mtl.illum == 3 || (is_black(rgb(mtl.diffuse)) && !is_black(rgb(mtl.specular)));
 }
 
+// Roughness as Blender's OBJ importer reads it: the PBR extension's Pr where given, else
+// 1 - sqrt(Ns / 1000) with Ns clamped to [0, 1000]. tinyobjloader gives an absent Ns as 1 and an
+// absent Pr as 0, so Ns 1 reads as no Ns (a smooth surface), and Pr 0 as no Pr.
+double roughness(const tinyobj::material_t& mtl) {
+    if (mtl.roughness > 0) return std::min(1.0, widen(mtl.roughness));
+    if (mtl.shininess == 1) return 0;
+    return 1 - std::sqrt(std::clamp(widen(mtl.shininess), 0.0, 1000.0) / 1000);
+}
+
+// Kd with a specular colour, or with the PBR extension's roughness or metalness: glTF's
+// dielectric (or, with Pm, its mix with the conductor).
+bool is_plastic(const tinyobj::material_t& mtl) {
+    return !is_black(rgb(mtl.specular)) || mtl.roughness > 0 || mtl.metallic > 0;
+}
+
 void note_textures(const tinyobj::material_t& mtl, ObjMaterial& out) {
     const std::pair<const std::string*, const char*> maps[] = {
         {&mtl.diffuse_texname, "map_Kd"},   {&mtl.specular_texname, "map_Ks"}, {&mtl.specular_highlight_texname, "map_Ns"},
@@ -61,6 +78,7 @@ void note_textures(const tinyobj::material_t& mtl, ObjMaterial& out) {
 
 void map_glass(const tinyobj::material_t& mtl, ObjMaterial& out) {
     out.material.type = MaterialType::glass;
+    out.material.roughness = roughness(mtl);
     const Rgb filter = rgb(mtl.transmittance);
     out.material.albedo = is_black(filter) ? Rgb{1} : reflectance(filter, "Tf", out);
     // tinyobjloader reads a missing Ni as 1, an index that would make the glass invisible.
@@ -70,6 +88,7 @@ void map_glass(const tinyobj::material_t& mtl, ObjMaterial& out) {
 
 void map_mirror(const tinyobj::material_t& mtl, ObjMaterial& out) {
     out.material.type = MaterialType::mirror;
+    out.material.roughness = roughness(mtl);
     const Rgb specular = rgb(mtl.specular);
     out.material.albedo = is_black(specular) ? Rgb{1} : reflectance(specular, "Ks", out);
     if (!is_black(rgb(mtl.diffuse))) out.ignored.push_back("Kd of a mirror");
@@ -78,7 +97,14 @@ void map_mirror(const tinyobj::material_t& mtl, ObjMaterial& out) {
 void map_diffuse(const tinyobj::material_t& mtl, ObjMaterial& out) {
     out.material.type = MaterialType::diffuse;
     out.material.albedo = reflectance(rgb(mtl.diffuse), "Kd", out);
-    if (!is_black(rgb(mtl.specular))) out.ignored.push_back("glossy highlight (Ks, Ns)");
+}
+
+// The specular layer's colour is the dielectric's, from its index (1.5): Ks only marks it.
+void map_plastic(const tinyobj::material_t& mtl, ObjMaterial& out) {
+    out.material.type = MaterialType::plastic;
+    out.material.albedo = reflectance(rgb(mtl.diffuse), "Kd", out);
+    out.material.roughness = roughness(mtl);
+    out.material.metallic = std::min(1.0, widen(mtl.metallic));
 }
 
 }  // namespace
@@ -88,10 +114,10 @@ ObjMaterial map_mtl_material(const tinyobj::material_t& mtl) {
     ObjMaterial out{mtl.name, {}, {}};
     if (is_dielectric(mtl)) map_glass(mtl, out);
     else if (is_mirror(mtl)) map_mirror(mtl, out);
+    else if (is_plastic(mtl)) map_plastic(mtl, out);
     else map_diffuse(mtl, out);
     out.material.emission = rgb(mtl.emission);
-    if (mtl.roughness > 0 || mtl.metallic > 0 || mtl.sheen > 0 || mtl.clearcoat_thickness > 0)
-        out.ignored.push_back("PBR parameters (Pr, Pm, Ps, Pc)");
+    if (mtl.sheen > 0 || mtl.clearcoat_thickness > 0) out.ignored.push_back("sheen and clearcoat (Ps, Pc)");
     note_textures(mtl, out);
     return out;
 }

@@ -233,28 +233,45 @@ private:
     }
 
     static MaterialType material_type(const At& at) {
-        const std::string type = at.choice({"diffuse", "mirror", "glass"});
-        return type == "diffuse" ? MaterialType::diffuse : type == "mirror" ? MaterialType::mirror : MaterialType::glass;
+        return material_type_named(at.choice({"diffuse", "mirror", "glass", "metal", "plastic"}).c_str());
     }
 
-    // The fields `at` gives, over `m`. A new type brings its own default albedo (1 for mirror
-    // and glass) unless `albedo` is given too.
+    // The fields `at` gives, over `m`. A new type brings its own defaults (material.h) for the
+    // fields not given with it; each field must be one the type has.
     static Material material_fields(const At& at, Material m, bool with_emission) {
-        if (with_emission) at.expect_object({"type", "albedo", "ior", "emission"});
-        else at.expect_object({"type", "albedo", "ior"});
+        if (with_emission) at.expect_object({"type", "albedo", "ior", "roughness", "metallic", "fresnel", "emission"});
+        else at.expect_object({"type", "albedo", "ior", "roughness", "metallic", "fresnel"});
         if (at.has("type")) {
             const MaterialType type = material_type(at["type"]);
-            if (type != m.type) m.albedo = type == MaterialType::diffuse ? Material{}.albedo : Rgb{1};
-            m.type = type;
+            if (type != m.type) m = with_type(m, type);
         }
         // Albedo above 1 would create energy.
         if (at.has("albedo")) m.albedo = at["albedo"].colour(1);
-        if (at.has("ior")) {
-            if (m.type != MaterialType::glass) at["ior"].fail("only glass has an index of refraction");
-            m.ior = at["ior"].number_in(1e-3, 1e3);
+        if (at.has("ior")) m.ior = field_of(at, "ior", has_ior(m.type), "only glass and plastic have an index of refraction").number_in(1e-3, 1e3);
+        if (at.has("roughness"))
+            m.roughness = field_of(at, "roughness", has_roughness(m.type), "a diffuse material has no roughness").number_in(0, 1);
+        if (at.has("metallic"))
+            m.metallic = field_of(at, "metallic", has_metallic(m.type), "only metal and plastic have a metallic mix").number_in(0, 1);
+        if (at.has("fresnel")) {
+            const At f = field_of(at, "fresnel", has_fresnel(m.type), "only glass has a Fresnel model");
+            m.fresnel = f.choice({"schlick", "exact"}) == "exact" ? FresnelModel::exact : FresnelModel::schlick;
         }
         if (with_emission && at.has("emission")) m.emission = at["emission"].colour(kMaxEmission);
         return m;
+    }
+
+    // m as a material of another type: that type's defaults, m's emission.
+    static Material with_type(const Material& m, MaterialType type) {
+        Material out = default_material(type);
+        out.emission = m.emission;
+        return out;
+    }
+
+    // at[key], which the material's type must have (else `message` at its path).
+    static At field_of(const At& at, const char* key, bool type_has_it, const char* message) {
+        const At field = at[key];
+        if (!type_has_it) field.fail(message);
+        return field;
     }
 
     static bool has_own_material(const At& object) { return object.has("material") || object.has("emission"); }

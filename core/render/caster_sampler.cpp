@@ -1,13 +1,14 @@
 #include "render/caster_sampler.h"
 
 #include "base/sampling.h"
+#include "scene/bsdf.h"
 
 namespace glint {
 
 CasterSampler::CasterSampler(const Scene& scene) {
     const Geometry& geometry = scene.geometry();
     for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim)
-        if (geometry.is_sphere(prim) && scene.material(prim).type != MaterialType::diffuse)
+        if (geometry.is_sphere(prim) && Bsdf::flags(scene.material(prim)).is_specular())
             casters_.push_back({geometry.sphere(prim).centre, geometry.sphere(prim).radius});
 }
 

@@ -3,11 +3,13 @@
 #include <algorithm>
 
 #include "base/sampling.h"
+#include "scene/bsdf.h"
 
 namespace glint {
 namespace {
 
-bool is_specular(const Material& m) { return m.type != MaterialType::diffuse; }
+bool is_specular(const Material& m) { return Bsdf::flags(m).is_specular(); }
+bool transmits(const Material& m) { return Bsdf::flags(m).has(BsdfFlags::transmission); }
 
 }  // namespace
 
@@ -18,7 +20,7 @@ SphereCap CausticEmitter::cap_for(const Scene& scene, uint32_t light_prim, uint3
     // Horizon: x sees some point of the target only if w·axis > (r - r_target) / dist.
     SphereCap best{(target.centre - light.centre) / dist, std::min(2.0, 1 - (light.radius - target.radius) / dist)};
     for (uint32_t prim = 0; prim < geometry.sphere_count(); ++prim) {
-        if (prim == light_prim || prim == target_prim || scene.material(prim).type == MaterialType::glass)
+        if (prim == light_prim || prim == target_prim || transmits(scene.material(prim)))
             continue;
         const Sphere& o = geometry.sphere(prim);
         const double target_dist = length(target.centre - o.centre);

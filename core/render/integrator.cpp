@@ -8,7 +8,9 @@
 namespace glint {
 namespace {
 
-PathShape extend(PathShape shape, bool diffuse) {
+PathShape extend(PathShape shape, VertexKind kind) {
+    if (kind == VertexKind::glossy) return PathShape::other;
+    const bool diffuse = kind == VertexKind::diffuse;
     switch (shape) {
         case PathShape::camera: return diffuse ? PathShape::diffuse : PathShape::other;
         case PathShape::diffuse: return diffuse ? PathShape::other : PathShape::caustic;
@@ -40,14 +42,13 @@ bool survives_roulette(Rgb& value, double threshold, Rng& rng) {
 
 }  // namespace
 
-Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, const Rgb& beta,
+Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const Bsdf& bsdf, const Rgb& beta,
                              double u1, double u2, Rng& rng) const {
     LightSample ls;
     const Vec3 facing = dot(d, si.n) < 0 ? si.n : -si.n;
     if (!scene_.lights().sample(si.p, si.prim, u1, u2, ls, facing)) return Rgb{0};
-    double bsdf_pdf;
-    const Rgb f_cos = diffuse_f_cos(m, d, si.n, ls.wi, bsdf_pdf);
-    Rgb value = beta * f_cos * ls.emission * (power_heuristic(ls.pdf, bsdf_pdf) / ls.pdf);
+    const BsdfValue f = bsdf.evaluate(-d, ls.wi);
+    Rgb value = beta * f.f_cos * ls.emission * (power_heuristic(ls.pdf, f.pdf) / ls.pdf);
     if (!survives_roulette(value, kShadowRoulette, rng)) return Rgb{0};
     Ray shadow = spawn_ray(si, ls.wi);
     shadow.tmax = ls.distance;
@@ -55,7 +56,7 @@ Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const 
     return value;
 }
 
-Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta,
+Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Bsdf& bsdf, const Rgb& beta,
                         const LightVertex& y, Rng& rng) const {
     const Vec3 to_y = y.si.p - x.p;
     const double distance2 = dot(to_y, to_y);
@@ -66,8 +67,8 @@ Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Materi
     if (cos_x * dot(d, x.n) >= 0 || cos_y * dot(y.d_in, y.si.n) <= 0) return Rgb{0};
     if (hidden_by_own_sphere(scene_.geometry(), y, x.p)) return Rgb{0};
     const double density_over_pi = connection_density_over_pi(cos_x, cos_y, distance2);
-    // f_x · G · f_y = albedo_x · albedo_y · cos_x·cos_y / (π²·distance²).
-    Rgb value = beta * m.albedo * y.albedo * y.beta *
+    // Both ends Lambertian: f_x · G · f_y = albedo_x · albedo_y · cos_x·cos_y / (π²·distance²).
+    Rgb value = beta * bsdf.albedo() * y.albedo * y.beta *
                 (density_over_pi * light_side_weight(density_over_pi, y.emitted_ratio));
     if (!survives_roulette(value, kShadowRoulette, rng)) return Rgb{0};
     const Vec3 from = offset_ray_origin(x, w), to = offset_ray_origin(y.si, -w);
@@ -77,15 +78,15 @@ Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Materi
     return value;
 }
 
-Rgb PathTracer::through_caster(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta,
+Rgb PathTracer::through_caster(const SurfaceInteraction& x, const Vec3& d, const Bsdf& bsdf, const Rgb& beta,
                                Rng& rng) const {
     const double u_pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     Vec3 wi;
-    double pdf, bsdf_pdf;
+    double pdf;
     if (!strategies_.casters().sample(x.p, u_pick, u1, u2, wi, pdf)) return Rgb{0};
-    const Rgb f_cos = diffuse_f_cos(m, d, x.n, wi, bsdf_pdf);
-    if (is_black(f_cos)) return Rgb{0};
-    Rgb throughput = beta * f_cos * (power_heuristic(pdf, bsdf_pdf) / pdf);
+    const BsdfValue f = bsdf.evaluate(-d, wi);
+    if (is_black(f.f_cos)) return Rgb{0};
+    Rgb throughput = beta * f.f_cos * (power_heuristic(pdf, f.pdf) / pdf);
     Rgb result{0};
     Ray ray = spawn_ray(x, wi);
     uint32_t self = x.prim;
@@ -94,9 +95,9 @@ Rgb PathTracer::through_caster(const SurfaceInteraction& x, const Vec3& d, const
         if (!scene_.geometry().intersect(ray, self, hit)) break;
         const Material& hm = scene_.material(hit.prim);
         if (bounces > 0) result += throughput * hm.emission;  // at 0 it is light sampling's
-        if (hm.type == MaterialType::diffuse || bounces == kMaxCasterBounces) break;
+        if (!Bsdf::flags(hm).is_specular() || bounces == kMaxCasterBounces) break;
         const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
-        const BsdfSample bs = sample_bsdf(hm, ray.d, si.n, rng);
+        const BsdfSample bs = Bsdf(hm, si.n).sample(-ray.d, rng);
         throughput *= bs.weight;
         if (is_black(throughput)) break;
         ray = spawn_ray(si, bs.wi);
@@ -128,15 +129,15 @@ Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light, const FirstV
 }
 
 Aov* PathTracer::note_aov(Aov* aov, const PathState& path, double t, const SurfaceInteraction& si,
-                          const Material& m, bool diffuse) const {
+                          const Bsdf& bsdf, bool specular) const {
     if (path.depth == 0) aov->depth = camera_.near() + t;
-    if (!diffuse) return aov;
-    aov->albedo = m.albedo;
+    if (specular) return aov;
+    aov->albedo = bsdf.albedo();
     aov->normal = dot(path.ray.d, si.n) < 0 ? si.n : -si.n;
     return nullptr;
 }
 
-bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, bool diffuse, const BsdfSample& bs,
+bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, VertexKind kind, const BsdfSample& bs,
                              Rng& rng) const {
     path.throughput *= bs.weight;
     if (is_black(path.throughput)) return false;
@@ -145,19 +146,22 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, bool
         if (rng.uniform() >= survive) return false;
         path.throughput *= 1 / survive;
     }
+    const bool diffuse = kind != VertexKind::specular;
     if (diffuse) {
-        path.caster_pdf = path.chain == 0 && !strategies_.casters().empty() ? strategies_.casters().pdf(si.p, bs.wi) : 0;
+        path.caster_pdf = kind == VertexKind::diffuse && path.chain == 0 && !strategies_.casters().empty()
+                              ? strategies_.casters().pdf(si.p, bs.wi)
+                              : 0;
         path.caster_bsdf_pdf = bs.pdf;
         path.caster_bounces = 0;
     } else {
         ++path.caster_bounces;
     }
-    path.shape = extend(path.shape, diffuse);
+    path.shape = extend(path.shape, kind);
     path.seen_directly = path.seen_directly && !diffuse;
-    path.specular = bs.specular;
-    path.previous_diffuse = diffuse;
+    path.specular = bs.is_specular();
+    path.previous_kind = kind;
     path.bsdf_pdf = bs.pdf;
-    path.previous = si.p;
+    path.previous_point = si.p;
     path.previous_facing = dot(path.ray.d, si.n) < 0 ? si.n : -si.n;
     path.self = si.prim;
     path.ray = spawn_ray(si, bs.wi);
@@ -167,7 +171,8 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, bool
 
 double PathTracer::found_light_weight(const PathState& path, const SurfaceInteraction& si, bool nee) const {
     if (nee && !path.specular)
-        return power_heuristic(path.bsdf_pdf, scene_.lights().pdf(path.previous, path.self, si, path.previous_facing));
+        return power_heuristic(path.bsdf_pdf,
+                               scene_.lights().pdf(path.previous_point, path.self, si, path.previous_facing));
     if (strategies_.light_tracing() && path.specular && path.chain > 0 && path.chain <= kLightVertices)
         return bounce_weight(path.chain_density, path.ray, si, path.self);
     if (path.caster_pdf > 0 && path.caster_bounces >= 1 && path.caster_bounces <= kMaxCasterBounces)
@@ -175,29 +180,35 @@ double PathTracer::found_light_weight(const PathState& path, const SurfaceIntera
     return 1;
 }
 
-void PathTracer::gather_at_diffuse(PathState& path, const SurfaceInteraction& si, const Material& m,
-                                   const FirstVertexSamples* first, const LightPath& light, bool nee, Rng& rng,
-                                   Rgb& result) const {
+void PathTracer::gather_at_vertex(PathState& path, const SurfaceInteraction& si, const Bsdf& bsdf, VertexKind kind,
+                                  const FirstVertexSamples* first, const LightPath& light, bool nee, Rng& rng,
+                                  Rgb& result) const {
     const Ray& ray = path.ray;
     const int max_depth = scene_.integrator().max_depth;
     if (nee) {
         const double u1 = first ? first->light[0] : rng.uniform(), u2 = first ? first->light[1] : rng.uniform();
-        result += direct_light(si, ray.d, m, path.throughput, u1, u2, rng);
+        result += direct_light(si, ray.d, bsdf, path.throughput, u1, u2, rng);
+    }
+    if (kind == VertexKind::glossy) {  // no light path reaches or leaves a glossy vertex
+        path.chain = 0;
+        return;
     }
     for (int i = 0; i < light.size; ++i)
         if (path.depth + 1 + light.vertices[i].hits <= max_depth)
-            result += connect(si, ray.d, m, path.throughput, light.vertices[i], rng);
+            result += connect(si, ray.d, bsdf, path.throughput, light.vertices[i], rng);
     if (!strategies_.light_tracing()) return;
+    const bool after_diffuse = path.previous_kind == VertexKind::diffuse;
     if (path.depth == 0) {
         path.chain_density = camera_.area_density(si.p, si.n) / kPi;
-    } else if (path.previous_diffuse) {
-        const Vec3 from_previous = si.p - path.previous;
+    } else if (after_diffuse) {
+        const Vec3 from_previous = si.p - path.previous_point;
         path.chain_density = connection_density_over_pi(dot(ray.d, path.previous_facing), dot(ray.d, si.n),
                                                         dot(from_previous, from_previous));
     }
-    path.chain = path.depth == 0 || path.previous_diffuse ? 1 : path.chain > 0 ? path.chain + 1 : 0;
+    const bool after_specular = path.previous_kind == VertexKind::specular;
+    path.chain = path.depth == 0 || after_diffuse ? 1 : after_specular && path.chain > 0 ? path.chain + 1 : 0;
     if (path.chain == 0 && !strategies_.casters().empty())
-        result += through_caster(si, ray.d, m, path.throughput, rng);
+        result += through_caster(si, ray.d, bsdf, path.throughput, rng);
 }
 
 Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov) const {
@@ -212,29 +223,33 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov
             break;
         }
         const Material& m = scene_.material(hit.prim);
-        const bool diffuse = m.type == MaterialType::diffuse;
-        if (diffuse && path.direct_view == DirectView::alone) {  // the direct view ends here
+        const BsdfFlags flags = Bsdf::flags(m);
+        const VertexKind kind = vertex_kind(flags);
+        const bool specular = kind == VertexKind::specular;
+        if (!specular && path.direct_view == DirectView::alone) {  // the direct view ends here
             if (m.is_emissive()) result += path.throughput * m.emission;
             break;
         }
         const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
-        if (aov) aov = note_aov(aov, path, hit.t, si, m, diffuse);
+        const Bsdf bsdf(m, si.n);
+        if (aov) aov = note_aov(aov, path, hit.t, si, bsdf, specular);
         // Caustic paths that light tracing covers are its alone (mis.h).
         const bool traced_from_light = strategies_.light_tracing() && path.shape == PathShape::caustic &&
                                        strategies_.caustic_emitter().covers(hit.prim, si.p, path.self);
         if (m.is_emissive() && !traced_from_light && path.counts_found_light())
             result += path.throughput * m.emission * found_light_weight(path, si, nee);
         if (path.depth + 1 >= settings.max_depth) break;
-        const FirstVertexSamples* first = diffuse ? std::exchange(path.first, nullptr) : nullptr;
-        if (diffuse) gather_at_diffuse(path, si, m, first, light, nee, rng, result);
+        const FirstVertexSamples* first = specular ? nullptr : std::exchange(path.first, nullptr);
+        if (!specular) gather_at_vertex(path, si, bsdf, kind, first, light, nee, rng, result);
         BsdfSample bs, reflected;
-        if (m.type == MaterialType::glass && path.depth < kSplitDepth && split_glass(m, ray.d, si.n, reflected, bs)) {
+        if (specular && path.depth < kSplitDepth && flags.has(BsdfFlags::transmission) &&
+            bsdf.split(-ray.d, reflected, bs)) {
             PathState branch = path;  // with the same stratified numbers for its first diffuse vertex
-            if (extend_path(branch, si, diffuse, reflected, rng)) result += trace(branch, rng, light);
+            if (extend_path(branch, si, kind, reflected, rng)) result += trace(branch, rng, light);
         } else {
-            bs = first ? sample_diffuse(m, ray.d, si.n, first->bounce[0], first->bounce[1]) : sample_bsdf(m, ray.d, si.n, rng);
+            bs = bsdf.sample(-ray.d, rng, first ? first->bounce : nullptr);
         }
-        if (!extend_path(path, si, diffuse, bs, rng)) break;
+        if (!extend_path(path, si, kind, bs, rng)) break;
     }
     return result;
 }

@@ -1,11 +1,12 @@
-// Unidirectional path tracing: cosine-sampled diffuse bounces, next-event estimation at
-// diffuse surfaces combined with BSDF sampling by the power heuristic, smallpt's mirror and
-// glass, Russian roulette on the path throughput and a hard depth cap.
+// Unidirectional path tracing: each vertex's BSDF sampled for the bounce (scene/bsdf.h), next-event
+// estimation at every non-specular vertex combined with BSDF sampling by the power heuristic,
+// Russian roulette on the path throughput and a hard depth cap. The tracer never asks which
+// material it hit, only its BSDF's flags.
 //
 // The tracer owns the strategies its estimator combines (strategies.h): with light tracing
-// (light_tracer.h), each diffuse vertex x is connected to the light path's diffuse vertices and
-// the caustic paths it splats are left to it; where light tracing cannot reach, mirror and
-// glass spheres are sampled as lights. Which strategy counts which path, and why the weights
+// (light_tracer.h), each diffuse (Lambertian) vertex x is connected to the light path's diffuse
+// vertices and the caustic paths it splats are left to it; where light tracing cannot reach,
+// specular spheres are sampled as lights. Which strategy counts which path, and why the weights
 // make an unbiased estimate, is mis.h's; found_light_weight() is where a bounce's share is taken.
 #pragma once
 
@@ -15,6 +16,7 @@
 #include "base/rng.h"
 #include "render/sampler.h"
 #include "render/strategies.h"
+#include "scene/bsdf.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -24,9 +26,19 @@ namespace glint {
 // apart from the rest of the path, from more camera rays (see direct_view.h).
 enum class DirectView {
     gathered,  // the path gathers it with everything else
-    left_out,  // the path gathers only what it finds after its first diffuse vertex
-    alone      // the path gathers only it, and ends at its first diffuse vertex
+    left_out,  // the path gathers only what it finds after its first non-specular vertex
+    alone      // the path gathers only it, and ends at its first non-specular vertex
 };
+
+// What the strategies make of a vertex, from its BSDF's flags: specular (every lobe a delta: no
+// light sampling), diffuse (Lambertian alone: light paths, their connections and the
+// CasterSampler work there, mis.h), or glossy (anything else non-specular: light sampling and
+// BSDF sampling only).
+enum class VertexKind { specular, diffuse, glossy };
+
+inline VertexKind vertex_kind(BsdfFlags flags) {
+    return flags.is_specular() ? VertexKind::specular : flags.is_diffuse() ? VertexKind::diffuse : VertexKind::glossy;
+}
 
 // The shape of a camera path so far, for handing caustic paths to light tracing.
 enum class PathShape { camera, diffuse, caustic, other };  // caustic: one diffuse, then specular+
@@ -39,7 +51,7 @@ public:
 
     // Radiance arriving along the camera ray, estimated with random numbers from rng; `light`
     // is this sample's light path (empty when the scene has no light tracing); `first`, if
-    // given, the numbers the path's first diffuse vertex uses instead of rng's; `direct` how
+    // given, the numbers the path's first non-specular vertex uses instead of rng's; `direct` how
     // the path treats what the camera sees through specular vertices only; `aov`, if given,
     // receives the path's features (aov.h; where glass splits the path, the refracted branch's).
     Rgb radiance(Ray ray, Rng& rng, const LightPath& light = kNoLightPath, const FirstVertexSamples* first = nullptr,
@@ -54,9 +66,9 @@ private:
         uint32_t self = kNoPrimitive;
         PathShape shape = PathShape::camera;
         bool specular = true;  // the camera "samples" its ray like a specular bounce: no MIS
-        bool previous_diffuse = false;
+        VertexKind previous_kind = VertexKind::specular;
         double bsdf_pdf = 0;
-        Vec3 previous, previous_facing;
+        Vec3 previous_point, previous_facing;
         // The path's last diffuse vertices as a light path could have made them: v, then
         // specular+ and diffuse vertices alternating, `chain` diffuse vertices in all (0: none,
         // because v's predecessor is specular), and the density (over π) with which v's
@@ -64,14 +76,14 @@ private:
         // weighed against that.
         int chain = 0;
         double chain_density = 0;
-        const FirstVertexSamples* first = nullptr;  // until the first diffuse vertex has used them
+        const FirstVertexSamples* first = nullptr;  // until the first non-specular vertex has used them
         // Since a diffuse vertex light tracing cannot reach (chain 0): the densities with which
         // its bounce and the CasterSampler pick the direction the path left it by (caster_pdf 0
         // where it does not apply), and the specular vertices met since.
         double caster_pdf = 0, caster_bsdf_pdf = 0;
         int caster_bounces = 0;
         DirectView direct_view = DirectView::gathered;
-        bool seen_directly = true;  // no diffuse vertex yet: what the path finds belongs to the direct view
+        bool seen_directly = true;  // no non-specular vertex yet: what the path finds belongs to the direct view
         // Whether light found now counts: the direct view's share depends on the path's part.
         bool counts_found_light() const { return !(seen_directly && direct_view == DirectView::left_out); }
     };
@@ -82,15 +94,16 @@ private:
     // lies behind glass, one deterministic branch, as a denoiser wants the features it sees.
     static constexpr int kSplitDepth = 2;
     // `aov` (kept out of PathState, which glass splitting copies) is filled in until the first
-    // diffuse vertex; nullptr: no AOVs.
+    // non-specular vertex; nullptr: no AOVs.
     Rgb trace(PathState path, Rng& rng, const LightPath& light, Aov* aov = nullptr) const;
     // Fills in `aov` at a surface the path meets (hit at distance t along its ray); returns
-    // nullptr at the first diffuse vertex, where the AOVs are complete, and `aov` before it.
-    Aov* note_aov(Aov* aov, const PathState& path, double t, const SurfaceInteraction& si, const Material& m,
-                  bool diffuse) const;
+    // nullptr at the first non-specular vertex, where the AOVs are complete, and `aov` before it.
+    Aov* note_aov(Aov* aov, const PathState& path, double t, const SurfaceInteraction& si, const Bsdf& bsdf,
+                  bool specular) const;
     // Moves the path on from si along bs (false: it ends there, by Russian roulette or a black
     // throughput).
-    bool extend_path(PathState& path, const SurfaceInteraction& si, bool diffuse, const BsdfSample& bs, Rng& rng) const;
+    bool extend_path(PathState& path, const SurfaceInteraction& si, VertexKind kind, const BsdfSample& bs,
+                     Rng& rng) const;
     // Both next strategies end in a shadow ray, and most of their contributions are small: one
     // worth less than kShadowRoulette (a tenth of white on the display) is tested only with
     // probability worth / kShadowRoulette and then counted 1/probability times, which keeps the
@@ -100,17 +113,17 @@ private:
     // Light arriving from one sampled light point at si (reached along d with throughput beta),
     // times f·cos, MIS-weighted against BSDF sampling.
     // (u1, u2) pick the point on the light.
-    Rgb direct_light(const SurfaceInteraction& si, const Vec3& d, const Material& m, const Rgb& beta, double u1,
+    Rgb direct_light(const SurfaceInteraction& si, const Vec3& d, const Bsdf& bsdf, const Rgb& beta, double u1,
                      double u2, Rng& rng) const;
     // Light reaching diffuse vertex x (reached along d with throughput beta) through a mirror
     // or glass sphere picked by the CasterSampler, times f·cos, MIS-weighted against
     // the bounce: the chain of specular vertices is followed as the path tracer would (Fresnel
     // picks at random), for at most kMaxCasterBounces vertices.
-    Rgb through_caster(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta, Rng& rng) const;
+    Rgb through_caster(const SurfaceInteraction& x, const Vec3& d, const Bsdf& bsdf, const Rgb& beta, Rng& rng) const;
     static constexpr int kMaxCasterBounces = 8;
     // What reaches the eye through diffuse vertex x (reached along d with throughput beta)
     // from light vertex y, MIS-weighted against the path tracer's bounces.
-    Rgb connect(const SurfaceInteraction& x, const Vec3& d, const Material& m, const Rgb& beta, const LightVertex& y,
+    Rgb connect(const SurfaceInteraction& x, const Vec3& d, const Bsdf& bsdf, const Rgb& beta, const LightVertex& y,
                 Rng& rng) const;
     // The weight of emission found through specular vertices after a diffuse vertex, against
     // the light path that could also have found it; `density_over_pi` belongs to that light
@@ -121,12 +134,13 @@ private:
     // strategy could also have found it (mis.h): next-event estimation, a light path or the
     // CasterSampler; 1 where none could.
     double found_light_weight(const PathState& path, const SurfaceInteraction& si, bool nee) const;
-    // What diffuse vertex si gathers, added to `result` in turn: next-event estimation (with
-    // `first`'s numbers, if given), the connections to the light path's vertices and the light
-    // through casters; also notes where the path stands in a light path's chain.
-    void gather_at_diffuse(PathState& path, const SurfaceInteraction& si, const Material& m,
-                           const FirstVertexSamples* first, const LightPath& light, bool nee, Rng& rng,
-                           Rgb& result) const;
+    // What non-specular vertex si gathers, added to `result` in turn: next-event estimation
+    // (with `first`'s numbers, if given), and at a diffuse vertex the connections to the light
+    // path's vertices and the light through casters; also notes where the path stands in a
+    // light path's chain.
+    void gather_at_vertex(PathState& path, const SurfaceInteraction& si, const Bsdf& bsdf, VertexKind kind,
+                          const FirstVertexSamples* first, const LightPath& light, bool nee, Rng& rng,
+                          Rgb& result) const;
 
     const Scene& scene_;
     const Camera& camera_;

@@ -1,6 +1,7 @@
 #include "render/light_tracer.h"
 
 #include "render/mis.h"
+#include "scene/bsdf.h"
 
 namespace glint {
 
@@ -38,16 +39,20 @@ bool LightTracer::to_diffuse(Ray ray, uint32_t self, uint32_t light, Rgb& throug
         Hit hit;
         if (!scene_.geometry().intersect(ray, self, hit)) return false;
         const Material& m = scene_.material(hit.prim);
-        const bool diffuse = m.type == MaterialType::diffuse;
-        // Other first surfaces are the path tracer's paths (or a connection's).
+        const BsdfFlags flags = Bsdf::flags(m);
+        const bool diffuse = flags.is_diffuse();
+        // Other first surfaces are the path tracer's paths (or a connection's); a glossy surface
+        // ends a light path, whose weights assume diffuse and specular vertices only (mis.h).
+        if (!diffuse && !flags.is_specular()) return false;
         if (first && (diffuse || (light != kNoPrimitive && !strategies_.caustic_emitter().is_target(light, hit.prim))))
             return false;
         si = scene_.geometry().interaction(ray, hit);
         d_in = ray.d;
         if (diffuse) return true;
-        // smallpt's BSDFs carry no η² and Schlick's term uses the outer cosine, so sampling
-        // them from the light side gives the adjoint weights.
-        const BsdfSample bs = sample_bsdf(m, ray.d, si.n, rng);
+        // Specular BSDFs carry no η², and their Fresnel terms are the same from either side
+        // (Schlick's uses the outer cosine), so sampling them from the light side gives the
+        // adjoint weights.
+        const BsdfSample bs = Bsdf(m, si.n).sample(-ray.d, rng);
         throughput *= bs.weight;
         if (is_black(throughput)) return false;
         if (hits > settings.rr_depth) {
@@ -74,9 +79,9 @@ LightPath LightTracer::trace(Rng& rng) const {
     for (uint32_t light = e.light; path.size < kLightVertices; light = kNoPrimitive) {
         LightVertex& v = path.vertices[path.size];
         if (!to_diffuse(ray, self, light, throughput, hits, rng, v.si, v.d_in)) break;
-        const Material& m = scene_.material(v.si.prim);
+        const Bsdf bsdf(scene_.material(v.si.prim), v.si.n);
         v.beta = e.weight * throughput;
-        v.albedo = m.albedo;
+        v.albedo = bsdf.albedo();
         v.emitted_ratio = e.emitted_ratio;
         v.hits = hits;
         ++path.size;
@@ -84,7 +89,7 @@ LightPath LightTracer::trace(Rng& rng) const {
         // tracing); the later vertices' are weighed against the path tracer's.
         splat(v, path.size == 1 ? 1 : light_side_weight(camera_.area_density(v.si.p, v.si.n) / kPi, e.emitted_ratio));
         if (path.size == kLightVertices || hits >= scene_.integrator().max_depth) break;
-        const BsdfSample bs = sample_bsdf(m, v.d_in, v.si.n, rng);
+        const BsdfSample bs = bsdf.sample(-v.d_in, rng);
         throughput *= bs.weight;
         if (is_black(throughput)) break;
         self = v.si.prim;

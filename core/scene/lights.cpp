@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "base/sampling.h"
+#include "scene/bsdf.h"
 
 namespace glint {
 
@@ -20,7 +21,7 @@ LightSet::LightSet(const Geometry& geometry, const std::vector<Material>& materi
         Light light{prim, m.emission};
         light.caps_begin = static_cast<uint32_t>(caps_.size());
         for (uint32_t o = 0; geometry.is_sphere(prim) && o < geometry.sphere_count(); ++o) {
-            if (o == prim || materials[material_of_prim[o]].type == MaterialType::glass) continue;
+            if (o == prim || Bsdf::flags(materials[material_of_prim[o]]).has(BsdfFlags::transmission)) continue;
             OccludedCap inside{o, true, {}}, outside{o, false, {}};
             if (SphereCap::beside(geometry.sphere(prim), geometry.sphere(o), true, inside.cap) &&
                 SphereCap::beside(geometry.sphere(prim), geometry.sphere(o), false, outside.cap)) {

@@ -1,49 +1,44 @@
-// What a surface does with light: smallpt's three materials, plus emission on any primitive.
+// What a surface is made of: a material's parameters, as a scene states them. What it does with
+// light is its BSDF's (bsdf.h), built from these at a shading point.
 #pragma once
 
 #include "base/math.h"
-#include "base/rng.h"
 
 namespace glint {
 
-enum class MaterialType { diffuse, mirror, glass };
+// smallpt's three materials, and glTF 2.0's metallic-roughness model at its two ends (metal and
+// plastic, mixed by `metallic`).
+enum class MaterialType { diffuse, mirror, glass, metal, plastic };
+
+// How glass reflects: smallpt's Schlick approximation (with the cosine on the outer side), or the
+// unpolarised dielectric Fresnel equations that Cycles, pbrt and Mitsuba use.
+enum class FresnelModel { schlick, exact };
 
 struct Material {
     MaterialType type = MaterialType::diffuse;
     Rgb albedo{0.75};
     double ior = 1.5;
     Rgb emission{0};  // radiance leaving both sides of the surface
+    // Blender's and glTF's roughness r in [0, 1]; the GGX distribution's α is r².
+    double roughness = 0;
+    double metallic = 0;  // metal and plastic: glTF's mix of the conductor over the dielectric
+    FresnelModel fresnel = FresnelModel::schlick;
 
     bool is_emissive() const { return !is_black(emission); }
 };
 
-// One sampled continuation of a path: the new direction, the factor f·cos/pdf by which the
-// path's throughput is multiplied, and the solid-angle pdf (for MIS; 0 for specular lobes).
-struct BsdfSample {
-    Vec3 wi;
-    Rgb weight;
-    double pdf = 0;
-    bool specular = false;
-};
+// The scene file's name of each type, in MaterialType's order, and the type of a name among them.
+inline constexpr const char* kMaterialTypeNames[] = {"diffuse", "mirror", "glass", "metal", "plastic"};
+MaterialType material_type_named(const char* name);
 
-// d: the incoming ray's direction; n: the unit geometric normal (either side).
-BsdfSample sample_bsdf(const Material& m, const Vec3& d, const Vec3& n, Rng& rng);
-// Cosine-weighted reflection from (u1, u2) in [0, 1)², on the side d came from.
-BsdfSample sample_diffuse(const Material& m, const Vec3& d, const Vec3& n, double u1, double u2);
-// Glass split into both continuations, each weighted by its Fresnel factor (Re and 1 - Re),
-// instead of picking one: false under total internal reflection, where there is one.
-bool split_glass(const Material& m, const Vec3& d, const Vec3& n, BsdfSample& reflected, BsdfSample& refracted);
-
-// Lambertian reflection f·cos for light arriving along wi at a surface hit from direction d
-// (0 when wi is on the other side), and the pdf with which sample_bsdf would pick wi.
-inline Rgb diffuse_f_cos(const Material& m, const Vec3& d, const Vec3& n, const Vec3& wi, double& pdf) {
-    const double cos_out = -dot(d, n), cos_in = dot(wi, n);
-    if (cos_out * cos_in <= 0) {
-        pdf = 0;
-        return Rgb{0};
-    }
-    pdf = std::fabs(cos_in) / kPi;
-    return m.albedo * pdf;
-}
+// The scene file's defaults for a material of `type`: albedo 1 for mirror, glass and metal,
+// metallic 1 for metal.
+Material default_material(MaterialType type);
+// Whether a material of `type` has the field: an index of refraction (glass, plastic), a
+// roughness (all but diffuse), a metallic mix (metal, plastic), a Fresnel model (glass).
+bool has_ior(MaterialType type);
+bool has_roughness(MaterialType type);
+bool has_metallic(MaterialType type);
+bool has_fresnel(MaterialType type);
 
 }  // namespace glint

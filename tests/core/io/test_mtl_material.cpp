@@ -62,12 +62,38 @@ TEST(MtlMaterial, TfAloneDoesNotMakeGlass) {
 }
 
 TEST(MtlMaterial, WhatGlintDoesNotModelIsNamed) {
-    const ObjMaterial m = mapped("illum 2\nKd 1.5 0.5 0.5\nKs 0.3 0.3 0.3\nNs 50\nmap_Kd bricks.png\nbump bricks_bump.png\nPr 0.4\n");
+    const ObjMaterial m = mapped("illum 2\nKd 1.5 0.5 0.5\nKs 0.3 0.3 0.3\nNs 50\nmap_Kd bricks.png\nbump bricks_bump.png\nPs 0.4\n");
     EXPECT_EQ(m.material.albedo, (Rgb{1, 0.5, 0.5}));
-    const std::vector<std::string> expected = {"Kd above 1 (clamped to 1)", "glossy highlight (Ks, Ns)",
-                                               "PBR parameters (Pr, Pm, Ps, Pc)", "texture map_Kd bricks.png",
+    const std::vector<std::string> expected = {"Kd above 1 (clamped to 1)", "texture map_Kd bricks.png",
                                                "texture bump bricks_bump.png"};
     EXPECT_EQ(m.ignored, expected);
+    EXPECT_EQ(mapped("Kd 0.5 0.5 0.5\nPs 0.4\nPc 0.2\n").ignored, std::vector<std::string>{"sheen and clearcoat (Ps, Pc)"});
+}
+
+TEST(MtlMaterial, NsGivesRoughnessAsBlendersImporterAndKsWithKdAPlastic) {
+    const ObjMaterial paint = mapped("illum 2\nKd 0.6 0.5 0.4\nKs 0.5 0.5 0.5\nNs 250\n");
+    EXPECT_EQ(paint.material.type, MaterialType::plastic);
+    EXPECT_EQ(paint.material.albedo, (Rgb{0.6, 0.5, 0.4}));
+    EXPECT_DOUBLE_EQ(paint.material.roughness, 0.5);  // 1 - sqrt(250 / 1000)
+    EXPECT_EQ(paint.material.metallic, 0);
+    EXPECT_TRUE(paint.ignored.empty());
+    EXPECT_DOUBLE_EQ(mapped("Kd 0.5 0.5 0.5\nKs 1 1 1\nNs 4000\n").material.roughness, 0);  // Ns clamped to 1000
+    EXPECT_DOUBLE_EQ(mapped("Kd 0.5 0.5 0.5\nKs 1 1 1\nNs 0\n").material.roughness, 1);
+    const ObjMaterial brushed = mapped("illum 3\nKs 0.9 0.9 0.9\nNs 640\n");
+    EXPECT_EQ(brushed.material.type, MaterialType::mirror);
+    EXPECT_DOUBLE_EQ(brushed.material.roughness, 0.2);
+    EXPECT_EQ(mapped("illum 3\nKs 0.9 0.9 0.9\n").material.roughness, 0);  // no Ns: a polished mirror
+    EXPECT_EQ(mapped("illum 1\nKd 0.5 0.5 0.5\nNs 10\n").material.type, MaterialType::diffuse);  // no Ks: no layer
+}
+
+TEST(MtlMaterial, ThePbrExtensionsRoughnessAndMetalnessWin) {
+    const ObjMaterial m = mapped("Kd 0.9 0.6 0.2\nKs 0.5 0.5 0.5\nNs 900\nPr 0.3\nPm 0.8\n");
+    EXPECT_EQ(m.material.type, MaterialType::plastic);
+    EXPECT_FLOAT_EQ(float(m.material.roughness), 0.3f);
+    EXPECT_FLOAT_EQ(float(m.material.metallic), 0.8f);
+    const ObjMaterial frosted = mapped("illum 7\nNi 1.45\nPr 0.25\n");
+    EXPECT_EQ(frosted.material.type, MaterialType::glass);
+    EXPECT_DOUBLE_EQ(frosted.material.roughness, 0.25);
 }
 
 TEST(MtlMaterial, NegativeOrHugeColoursAreErrorsNamingTheMaterial) {

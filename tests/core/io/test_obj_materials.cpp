@@ -59,7 +59,7 @@ TEST_F(ObjMaterials, EachUsemtlGroupGetsItsLibraryMaterial) {
     EXPECT_EQ(s.scene->lights().size(), 1u);  // the lamp's one triangle
     // Named, with the JSON path; the unused glass says nothing.
     const std::vector<std::string> warnings = {
-        "objects[0].file: material \"paint\": ignored glossy highlight (Ks, Ns); texture map_Kd wood.png"};
+        "objects[0].file: material \"paint\": ignored texture map_Kd wood.png"};
     EXPECT_EQ(s.warnings, warnings);
 }
 

@@ -1,7 +1,7 @@
 // Materials: total internal reflection, grazing incidence, Snell's law, and no energy created.
 #include <gtest/gtest.h>
 
-#include "scene/material.h"
+#include "scene/bsdf.h"
 #include "base/sampling.h"
 
 namespace glint {
@@ -16,6 +16,7 @@ Vec3 incoming_at(double degrees_from_normal, bool from_outside) {
 }
 
 Material glass(double albedo = 1) { return {MaterialType::glass, Rgb{albedo}, 1.5, Rgb{0}}; }
+const Material kGlass = glass(), kTintedGlass = glass(0.9);
 
 TEST(Materials, TotalInternalReflectionAlwaysReflects) {
     Rng rng(31, 0, 0);
@@ -23,8 +24,8 @@ TEST(Materials, TotalInternalReflectionAlwaysReflects) {
     for (double angle : {42.0, 60.0, 89.9}) {
         const Vec3 d = incoming_at(angle, false);
         for (int i = 0; i < 1000; ++i) {
-            const BsdfSample s = sample_bsdf(glass(0.9), d, kUp, rng);
-            EXPECT_TRUE(s.specular);
+            const BsdfSample s = Bsdf(kTintedGlass, kUp).sample(-d, rng);
+            EXPECT_TRUE(s.is_specular());
             EXPECT_NEAR(s.wi.z, -d.z, 1e-12);  // mirrored back inside
             EXPECT_NEAR(s.wi.x, d.x, 1e-12);
             EXPECT_EQ(s.weight, Rgb{0.9});
@@ -40,7 +41,7 @@ TEST(Materials, GlassObeysSnellAndConservesEnergyAtEveryAngle) {
             double sum = 0, sum_sq = 0;
             const int n = 20000;
             for (int i = 0; i < n; ++i) {
-                const BsdfSample s = sample_bsdf(glass(), d, kUp, rng);
+                const BsdfSample s = Bsdf(kGlass, kUp).sample(-d, rng);
                 ASSERT_TRUE(is_finite(s.weight));
                 EXPECT_NEAR(length(s.wi), 1, 1e-12);
                 const bool refracted = (s.wi.z < 0) == outside;
@@ -64,14 +65,14 @@ TEST(Materials, SplitGlassFollowsBothDirectionsWithFresnelWeightsThatSumToTheAlb
         for (double angle : {0.0, 30.0, 41.0, 80.0}) {
             const Vec3 d = incoming_at(angle, outside);
             BsdfSample reflected, refracted;
-            const bool split = split_glass(glass(0.9), d, kUp, reflected, refracted);
+            const bool split = Bsdf(kTintedGlass, kUp).split(-d, reflected, refracted);
             ASSERT_EQ(split, outside || angle < 41.5) << angle;  // beyond ~41.8° inside: total reflection
             if (!split) continue;
             EXPECT_NEAR(reflected.weight.x + refracted.weight.x, 0.9, 1e-15) << angle;
             EXPECT_GT(refracted.weight.x, reflected.weight.x) << angle;
             // The directions are the two that sampling picks between.
             for (int i = 0; i < 64; ++i) {
-                const BsdfSample s = sample_bsdf(glass(0.9), d, kUp, rng);
+                const BsdfSample s = Bsdf(kTintedGlass, kUp).sample(-d, rng);
                 EXPECT_TRUE(s.wi == reflected.wi || s.wi == refracted.wi) << angle;
             }
         }
@@ -81,7 +82,7 @@ TEST(Materials, GrazingIncidenceOnGlassMostlyReflects) {
     Rng rng(33, 0, 0);
     const Vec3 d = incoming_at(89.999, true);
     int reflected = 0;
-    for (int i = 0; i < 10000; ++i) reflected += sample_bsdf(glass(), d, kUp, rng).wi.z > 0;
+    for (int i = 0; i < 10000; ++i) reflected += Bsdf(kGlass, kUp).sample(-d, rng).wi.z > 0;
     // Schlick's Re is ~1 at grazing, so P = 1/4 + Re/2 is ~3/4.
     EXPECT_NEAR(reflected / 10000.0, 0.75, 0.02);
 }
@@ -94,14 +95,13 @@ TEST(Materials, DiffuseAndMirrorNeverCreateEnergy) {
         for (bool outside : {true, false}) {
             const Vec3 d = incoming_at(angle, outside);
             for (int i = 0; i < 1000; ++i) {
-                const BsdfSample s = sample_bsdf(white, d, kUp, rng);
+                const BsdfSample s = Bsdf(white, kUp).sample(-d, rng);
                 EXPECT_LE(max_component(s.weight), 1.0);
                 EXPECT_GT(-dot(s.wi, kUp) * dot(d, kUp), -1e-15);  // back to the side it came from
-                double pdf;
-                const Rgb f_cos = diffuse_f_cos(white, d, kUp, s.wi, pdf);
-                EXPECT_NEAR(pdf, s.pdf, 1e-12);
-                EXPECT_NEAR(f_cos.x / pdf, 1, 1e-12);
-                const BsdfSample m = sample_bsdf(mirror, d, kUp, rng);
+                const BsdfValue f = Bsdf(white, kUp).evaluate(-d, s.wi);
+                EXPECT_NEAR(f.pdf, s.pdf, 1e-12);
+                EXPECT_NEAR(f.f_cos.x / f.pdf, 1, 1e-12);
+                const BsdfSample m = Bsdf(mirror, kUp).sample(-d, rng);
                 EXPECT_EQ(m.weight, Rgb{1});
                 EXPECT_NEAR(m.wi.z, -d.z, 1e-15);
             }
@@ -111,9 +111,9 @@ TEST(Materials, DiffuseAndMirrorNeverCreateEnergy) {
 
 TEST(Materials, DiffuseSeesNothingBehindTheSurface) {
     const Material white{MaterialType::diffuse, Rgb{1}, 1.5, Rgb{0}};
-    double pdf;
-    EXPECT_TRUE(is_black(diffuse_f_cos(white, incoming_at(30, true), kUp, {0, 0, -1}, pdf)));
-    EXPECT_EQ(pdf, 0);
+    const BsdfValue f = Bsdf(white, kUp).evaluate(-incoming_at(30, true), {0, 0, -1});
+    EXPECT_TRUE(is_black(f.f_cos));
+    EXPECT_EQ(f.pdf, 0);
 }
 
 }  // namespace
