@@ -94,11 +94,12 @@ TEST_F(ObjMaterials, WithItsOwnMaterialTheLibraryIsNeverOpened) {
 
 TEST_F(ObjMaterials, BadOverridesNameTheirPath) {
     EXPECT_EQ(error_of(R"(, "materials": {"lamp": {"emision": 5}})"),
-              "objects[0].materials.lamp.emision: unknown field (expected one of: type, albedo, ior, emission)");
+              "objects[0].materials.lamp.emision: unknown field (expected one of: type, albedo, ior, roughness, metallic, fresnel, "
+              "emission)");
     EXPECT_EQ(error_of(R"(, "materials": {"lmap": {}})"),
               "objects[0].materials.lmap: the OBJ's material libraries have no material of this name");
     EXPECT_EQ(error_of(R"(, "materials": {"lamp": {"ior": 1.5}})"),
-              "objects[0].materials.lamp.ior: only glass has an index of refraction");
+              "objects[0].materials.lamp.ior: only glass and plastic have an index of refraction");
     EXPECT_EQ(error_of(R"(, "materials": {"lamp": {"albedo": 2}})"), "objects[0].materials.lamp.albedo: must be in [0, 1]");
     EXPECT_EQ(error_of(R"(, "materials": [])"), "objects[0].materials: must be an object of material names");
     EXPECT_EQ(scene_error(R"({"objects": [{"type": "mesh", "vertices": [], "indices": [], "materials": {}}]})", {}),

@@ -39,6 +39,26 @@ TEST(SceneLoader, EveryFieldHasADefault) {
     EXPECT_TRUE(s.scene->integrator().light_sampling);
 }
 
+TEST(SceneLoader, EachMaterialTypeHasItsDefaults) {
+    const auto material = [](const std::string& fields) {
+        return parse_scene(sphere_with(R"("radius": 1, "material": {)" + fields + "}"), {}).scene->material(1);
+    };
+    const Material metal = material(R"("type": "metal")"), plastic = material(R"("type": "plastic")");
+    EXPECT_EQ(metal.albedo, Rgb{1});
+    EXPECT_EQ(metal.metallic, 1);
+    EXPECT_EQ(metal.roughness, 0);
+    EXPECT_EQ(plastic.albedo, Rgb{0.75});
+    EXPECT_EQ(plastic.metallic, 0);
+    EXPECT_EQ(plastic.ior, 1.5);
+    const Material glass = material(R"("type": "glass", "roughness": 0.25, "fresnel": "exact")");
+    EXPECT_EQ(glass.roughness, 0.25);
+    EXPECT_EQ(glass.fresnel, FresnelModel::exact);
+    EXPECT_EQ(material(R"("type": "glass")").fresnel, FresnelModel::schlick);
+    const Material mixed = material(R"("type": "metal", "metallic": 0.5, "roughness": 1)");
+    EXPECT_EQ(mixed.metallic, 0.5);
+    EXPECT_EQ(mixed.roughness, 1);
+}
+
 TEST(SceneLoader, LoadsSmallptsCornellBox) {
     const LoadedScene s = load_scene(GLINT_SCENES_DIR "/cornell.json");
     EXPECT_EQ(s.scene->geometry().primitive_count(), 9u);
@@ -81,9 +101,25 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
     EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"albedo": [1, 1.5, 1]})")),
               "objects[1].material.albedo[1]: must be in [0, 1]");
     EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"ior": 1.3})")),
-              "objects[1].material.ior: only glass has an index of refraction");
-    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"type": "metal"})")),
-              R"(objects[1].material.type: must be one of "diffuse", "mirror", "glass" (got "metal"))");
+              "objects[1].material.ior: only glass and plastic have an index of refraction");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"type": "velvet"})")),
+              R"(objects[1].material.type: must be one of "diffuse", "mirror", "glass", "metal", "plastic" (got "velvet"))");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"type": "mirror", "roughness": 1.5})")),
+              "objects[1].material.roughness: must be in [0, 1]");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"type": "glass", "roughness": -0.1})")),
+              "objects[1].material.roughness: must be in [0, 1]");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"roughness": 0.5})")),
+              "objects[1].material.roughness: a diffuse material has no roughness");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"type": "plastic", "metallic": 2})")),
+              "objects[1].material.metallic: must be in [0, 1]");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"type": "glass", "metallic": 0.5})")),
+              "objects[1].material.metallic: only metal and plastic have a metallic mix");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"type": "glass", "fresnel": "fast"})")),
+              R"(objects[1].material.fresnel: must be one of "schlick", "exact" (got "fast"))");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"type": "mirror", "fresnel": "exact"})")),
+              "objects[1].material.fresnel: only glass has a Fresnel model");
+    EXPECT_EQ(error_of(sphere_with(R"("radius": 1, "material": {"type": "plastic", "ior": 0})")),
+              "objects[1].material.ior: must be in [0.001, 1000]");
     EXPECT_EQ(error_of(R"({"film": {"width": 0}})"), "film.width: must be in [1, 16384]");
     EXPECT_EQ(error_of(R"({"film": {"width": "big"}})"), "film.width: must be an integer");
     EXPECT_EQ(error_of(R"({"film": {"width": 16384, "height": 16384}})"),
