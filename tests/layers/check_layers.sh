@@ -49,6 +49,16 @@ done
 if ! loops=$(sort -u "$edges" | tsort 2>&1 >/dev/null) || [ -n "$loops" ]; then
   echo "include loop between modules:"; echo "$loops" | sed 's/^tsort: /  /'; failed=1
 fi
+# What a surface does with light is its BSDF's: outside the materials' own files (core/scene's
+# material, bsdf, lambertian, mirror, glass and metallic_roughness) no code branches on a
+# material type; it asks the BSDF's flags instead.
+materials='core/scene/(material|bsdf|bsdf_flags|lambertian|mirror|glass|metallic_roughness)\.(h|cpp):'
+branches=$(cd "$root" && grep -nE '(==|!=)[[:space:]]*MaterialType::|MaterialType::[a-z_]+[[:space:]]*(==|!=)|case[[:space:]]+MaterialType::' \
+             -r core server --include='*.h' --include='*.cpp' | grep -vE "^($materials)" || true)
+if [ -n "$branches" ]; then
+  echo "branches on a material type outside the materials' files (ask the BSDF's flags):"
+  echo "$branches" | sed 's/^/  /'; failed=1
+fi
 modules=$(awk '{print $1; print $2}' "$edges" | sort -u | wc -l)
 echo "$count project includes in ${#layers[@]} layers, $(sort -u "$edges" | wc -l) module edges among $modules modules"
 for l in "${layers[@]}"; do
