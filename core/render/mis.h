@@ -4,9 +4,11 @@
 // pair below is weighed by the power heuristic from the same two densities on both sides, so
 // its weights are x²/(x² + y²) and y²/(y² + x²): they sum to one whichever the densities are.
 //
-// Emission found by a bounce from a diffuse vertex x, against:
+// Emission found by a bounce from a non-specular vertex x, against:
 // - next-event estimation at x (PathTracer::direct_light): power_heuristic(light pdf, BSDF pdf)
-//   there, power_heuristic(BSDF pdf, light pdf) on the bounce;
+//   there, power_heuristic(BSDF pdf, light pdf) on the bounce, the BSDF pdf x's own, glossy or
+//   diffuse;
+// and from a diffuse (Lambertian) vertex x also against:
 // - the CasterSampler at x, for light reaching x through one to kMaxCasterBounces specular
 //   vertices from a diffuse vertex light tracing cannot reach (PathTracer::through_caster):
 //   power_heuristic(caster pdf, BSDF pdf) there, power_heuristic(BSDF pdf, caster pdf) on the
@@ -14,7 +16,7 @@
 // - a light path's diffuse vertex v met by x's connection, or by the eye's splat when v is the
 //   first diffuse vertex after the camera (light_tracer.h): light_side_weight() there,
 //   1 - light_side_weight() on the bounce (PathTracer::bounce_weight), from the same ratio.
-// These cases are disjoint: NEE's follows a diffuse bounce, the others specular ones; the
+// These cases are disjoint: NEE's follows a non-specular bounce, the others specular ones; the
 // CasterSampler's starts at a vertex no light path reaches (chain 0), the light path's at one
 // it does.
 //
@@ -24,6 +26,10 @@
 //   splat of y alone; the path tracer drops what it finds there (PathTracer::trace);
 // - in the pixels where the direct view splits (direct_view.h), what the camera sees through
 //   specular vertices only: the extra direct-view rays alone; the sample's own path leaves it out.
+//
+// The light-side weights below assume cosine sampling at every diffuse vertex. A glossy vertex
+// (integrator.h's VertexKind) never takes part: light paths end at one, a camera path's chain
+// starts again after one, and no connection or CasterSampler ray leaves one.
 #pragma once
 
 #include <cmath>
