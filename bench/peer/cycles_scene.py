@@ -5,11 +5,15 @@ Run inside Blender:
       SCENE.json --width W --height H --spp 4,16,64 --seeds 1,2,3 --out PREFIX
 
 Builds the scene as glint reads it (y up in glint, z up in Blender): triangle meshes from inline
-vertices or OBJ files (with their MTL's Kd and Ke), Diffuse BSDF for diffuse, a sharp Glossy BSDF
-for mirrors, a sharp Glass BSDF for glass, an Emission shader of strength 1 whose colour is glint's
+vertices or OBJ files (with their MTL's Kd and Ke), Diffuse BSDF for diffuse, a Glossy BSDF for
+mirrors (Sharp when smooth, GGX of the same Roughness when rough: glint's mirror is that surface),
+a Sharp Glass BSDF for smooth glass with `fresnel: "exact"` (the same surface; Cycles 3.4's rough
+Glass BSDF takes its Fresnel term at the shading normal, not the microfacet's, so rough glass is
+refused, as are metal, plastic and Schlick's glass), an Emission shader of strength 1 whose colour is glint's
 radiance, a black world, a pinhole camera with glint's vertical field of view and a box pixel
 filter of width 1 (glint's film.filter "box"). No clamping, denoising, adaptive sampling or light
-threshold; caustics on; 128 bounces of every kind. For each (spp, seed) it writes PREFIX_SPP_SEED.pfm
+threshold; caustics on; 128 bounces of every kind. With --bsdf-only, emitters are not sampled as
+lights (their materials' Multiple Importance off): Cycles' BSDF-only estimator. For each (spp, seed) it writes PREFIX_SPP_SEED.pfm
 (linear RGB) and one JSON line to PREFIX.jsonl with the render's CPU seconds (the process's user +
 sys over the render call, all threads, Cycles' scene sync and BVH build included), its wall
 seconds, and the seconds this script took to build the scene in Blender before (`import`).
@@ -95,16 +99,25 @@ def colour(value, default):
     return [float(value)] * 3 if isinstance(value, (int, float)) else [float(x) for x in value]
 
 
+SMOOTH_ROUGHNESS = 0.0316  # glint handles roughness below this (α below 0.001) as smooth
+
+
 def glint_material(obj_material, emission):
-    """A glint material as a dict (type, albedo, ior, emission), with glint's defaults."""
+    """A glint material as a dict (type, albedo, ior, roughness, fresnel, emission), with glint's defaults."""
     m = dict(obj_material or {})
     kind = m.get("type", "diffuse")
+    if kind not in ("diffuse", "mirror", "glass"):
+        sys.exit(f"cycles_scene.py: {kind} has no Cycles 3.4 BSDF that is the same surface")
+    roughness = float(m.get("roughness", 0))
+    if kind == "glass" and (roughness >= SMOOTH_ROUGHNESS or m.get("fresnel") != "exact"):
+        sys.exit("cycles_scene.py: only smooth glass with exact Fresnel is the same surface as Cycles' Glass BSDF")
     return {"type": kind, "albedo": colour(m.get("albedo"), [0.75] * 3 if kind == "diffuse" else [1] * 3),
-            "ior": float(m.get("ior", 1.5)), "emission": colour(emission, [0, 0, 0])}
+            "ior": float(m.get("ior", 1.5)), "roughness": roughness, "emission": colour(emission, [0, 0, 0])}
 
 
-def cycles_material(name, m):
+def cycles_material(name, m, bsdf_only=False):
     mat = bpy.data.materials.new(name)
+    mat.cycles.sample_as_light = not bsdf_only
     mat.use_nodes = True
     nodes, links = mat.node_tree.nodes, mat.node_tree.links
     nodes.clear()
@@ -114,7 +127,8 @@ def cycles_material(name, m):
         bsdf.inputs["Roughness"].default_value = 0
     elif m["type"] == "mirror":
         bsdf = nodes.new("ShaderNodeBsdfGlossy")
-        bsdf.distribution = "SHARP"
+        bsdf.distribution = "SHARP" if m["roughness"] < SMOOTH_ROUGHNESS else "GGX"
+        bsdf.inputs["Roughness"].default_value = m["roughness"]
     else:
         bsdf = nodes.new("ShaderNodeBsdfGlass")
         bsdf.distribution = "SHARP"
@@ -133,7 +147,7 @@ def cycles_material(name, m):
     return mat
 
 
-def add_mesh(index, obj, folder):
+def add_mesh(index, obj, folder, bsdf_only):
     if obj.get("type") != "mesh":
         sys.exit("cycles_scene.py: spheres are not built here (the benchmark leaves sphere scenes out)")
     scale = obj.get("scale", 1)
@@ -157,10 +171,11 @@ def add_mesh(index, obj, folder):
     mesh = bpy.data.meshes.new(f"mesh{index}")
     mesh.from_pydata(placed, [], faces)
     slots = [None] + sorted(library)
-    mesh.materials.append(cycles_material(f"m{index}", own))
+    mesh.materials.append(cycles_material(f"m{index}", own, bsdf_only))
     for name in slots[1:]:
         m = library[name]
-        mesh.materials.append(cycles_material(f"m{index}_{name}", glint_material({"albedo": m["albedo"]}, m["emission"])))
+        mesh.materials.append(
+            cycles_material(f"m{index}_{name}", glint_material({"albedo": m["albedo"]}, m["emission"]), bsdf_only))
     mesh.polygons.foreach_set("material_index", [slots.index(n) if n in library else 0 for n in names])
     mesh.update()
     bpy.context.scene.collection.objects.link(bpy.data.objects.new(f"object{index}", mesh))
@@ -238,6 +253,7 @@ def main():
     ap.add_argument("--spp", required=True)
     ap.add_argument("--seeds", required=True)
     ap.add_argument("--out", required=True)
+    ap.add_argument("--bsdf-only", action="store_true")
     a = ap.parse_args(argv)
     with open(a.scene) as f:
         glint_scene = json.load(f)
@@ -246,7 +262,7 @@ def main():
     scene = bpy.context.scene
     configure(scene, a.width, a.height)
     for i, obj in enumerate(glint_scene.get("objects", [])):
-        add_mesh(i, obj, os.path.dirname(os.path.abspath(a.scene)))
+        add_mesh(i, obj, os.path.dirname(os.path.abspath(a.scene)), a.bsdf_only)
     add_camera(glint_scene.get("camera", {}))
     imported = time.perf_counter() - imported
     with open(a.out + ".jsonl", "a") as log:

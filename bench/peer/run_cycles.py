@@ -1,7 +1,8 @@
 #!/usr/bin/python3
-"""glint against Blender Cycles on every mesh scene in scenes/: do they converge to the same
-image, and how long does each take to reach the same error? (bench/BENCHMARKS.md, "Against
-Cycles"; the scene translation is bench/peer/cycles_scene.py.)
+"""glint against Blender Cycles on every mesh scene in scenes/, and on variants of them with rough
+mirrors and glass (VARIANTS): do they converge to the same image, and how long does each take to
+reach the same error? (bench/BENCHMARKS.md, "Against Cycles"; the scene translation is
+bench/peer/cycles_scene.py.)
 
   /usr/bin/python3 bench/peer/run_cycles.py [--scenes mesh,cornell_box] [--width 160 --height 120]
                                             [--ladder 4,16,64,256] [--reference-spp 1024]
@@ -54,10 +55,24 @@ def mesh_scenes():
     return names
 
 
+# Mesh scenes with rough materials: a base scene and the materials that replace its objects'.
+# Rough glass is left out: Cycles 3.4's rough Glass BSDF takes its Fresnel term at the shading
+# normal, not the microfacet's, so it is another surface.
+VARIANTS = {
+    "mesh_rough": ("mesh", {0: {"type": "mirror", "roughness": 0.3, "albedo": [0.8, 0.55, 0.2]}}),
+    "bunny_box_rough": ("bunny_box", {0: {"type": "mirror", "roughness": 0.25, "albedo": [0.8, 0.75, 0.65]},
+                                      4: {"type": "mirror", "roughness": 0.15, "albedo": 0.9}}),
+    "mesh_glass": ("mesh", {0: {"type": "glass", "fresnel": "exact", "ior": 1.5}}),
+}
+
+
 def box_filter_copy(name):
-    """The scene with film.filter "box", beside the original so its mesh files resolve."""
-    with open(os.path.join(ROOT, "scenes", name + ".json")) as f:
+    """The scene (or variant) with film.filter "box", beside the original so its mesh files resolve."""
+    base, materials = VARIANTS.get(name, (name, {}))
+    with open(os.path.join(ROOT, "scenes", base + ".json")) as f:
         scene = json.load(f)
+    for index, material in materials.items():
+        scene["objects"][index]["material"] = material
     scene.setdefault("film", {})["filter"] = "box"
     path = os.path.join(ROOT, "scenes", f".peer-{name}.json")
     with open(path, "w") as f:
@@ -167,7 +182,7 @@ def plot(curves, path):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--scenes", default=",".join(mesh_scenes()))
+    ap.add_argument("--scenes", default=",".join(mesh_scenes() + list(VARIANTS)))
     ap.add_argument("--width", type=int, default=160)
     ap.add_argument("--height", type=int, default=120)
     ap.add_argument("--ladder", default="4,16,64,256")

@@ -148,7 +148,7 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, Vert
     }
     const bool diffuse = kind != VertexKind::specular;
     if (diffuse) {
-        path.caster_pdf = kind == VertexKind::diffuse && path.chain == 0 && !strategies_.casters().empty()
+        path.caster_pdf = !strategies_.casters().empty() && path.chain == 0 && kind == VertexKind::diffuse
                               ? strategies_.casters().pdf(si.p, bs.wi)
                               : 0;
         path.caster_bsdf_pdf = bs.pdf;

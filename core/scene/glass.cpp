@@ -6,11 +6,12 @@
 namespace glint {
 namespace {
 
-bool is_smooth(const Material& m) { return Ggx::alpha_of(m.roughness) < Ggx::kSmoothAlpha; }
+bool is_smooth(const Material& m) { return Ggx::is_smooth(m.roughness); }
 
 // The reflectance of light meeting the interface at cosine cos_i (> 0) and refracted at cos_t,
 // eta the index of the near side over the far side's, `entering` from the outside.
-double reflectance(const Material& m, double cos_i, double cos_t, double eta, bool entering) {
+[[gnu::always_inline]] inline double reflectance(const Material& m, double cos_i, double cos_t, double eta,
+                                                 bool entering) {
     if (m.fresnel == FresnelModel::exact) return fresnel_dielectric(cos_i, 1 / eta);
     const double r0 = ((m.ior - 1) / (m.ior + 1)) * ((m.ior - 1) / (m.ior + 1));
     const double c = 1 - (entering ? cos_i : cos_t);  // the cosine on the outer side
@@ -129,11 +130,6 @@ BsdfSample sample_rough(const Material& m, const Vec3& n, const Vec3& wo, Rng& r
 }
 
 }  // namespace
-
-BsdfFlags glass_flags(const Material& m) {
-    return {uint8_t(BsdfFlags::reflection | BsdfFlags::transmission |
-                    (is_smooth(m) ? BsdfFlags::specular : BsdfFlags::glossy))};
-}
 
 BsdfSample sample_glass(const Material& m, const Vec3& n, const Vec3& wo, Rng& rng, const double* given) {
     return is_smooth(m) ? sample_smooth(m, n, wo, rng) : sample_rough(m, n, wo, rng, given);

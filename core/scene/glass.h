@@ -9,10 +9,14 @@
 #include "base/rng.h"
 #include "scene/bsdf_flags.h"
 #include "scene/material.h"
+#include "scene/microfacet.h"
 
 namespace glint {
 
-BsdfFlags glass_flags(const Material& m);
+inline BsdfFlags glass_flags(const Material& m) {
+    return {uint8_t(BsdfFlags::reflection | BsdfFlags::transmission |
+                    (Ggx::is_smooth(m.roughness) ? BsdfFlags::specular : BsdfFlags::glossy))};
+}
 // n: the unit outward geometric normal; wo: toward where the path came from. A rough surface's
 // microfacet normal takes two numbers (direction_numbers), then the choice between reflection
 // and refraction one of rng; smooth glass takes only the choice, and none under total internal

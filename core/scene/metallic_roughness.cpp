@@ -7,7 +7,7 @@
 namespace glint {
 namespace {
 
-bool is_smooth(const Material& m) { return Ggx::alpha_of(m.roughness) < Ggx::kSmoothAlpha; }
+bool is_smooth(const Material& m) { return Ggx::is_smooth(m.roughness); }
 
 // The specular layer's colour at cosine c: the dielectric's F and the conductor's, mixed.
 Rgb specular_colour(const Material& m, double c) {
@@ -46,12 +46,6 @@ BsdfValue evaluate_local(const Material& m, const Vec3& o, const Vec3& i) {
 }
 
 }  // namespace
-
-BsdfFlags metallic_roughness_flags(const Material& m) {
-    uint8_t bits = BsdfFlags::reflection | (is_smooth(m) ? BsdfFlags::specular : BsdfFlags::glossy);
-    if (m.metallic < 1 && !is_black(m.albedo)) bits |= BsdfFlags::diffuse;
-    return {bits};
-}
 
 BsdfSample sample_metallic_roughness(const Material& m, const Vec3& n, const Vec3& wo, Rng& rng,
                                      const double* given) {

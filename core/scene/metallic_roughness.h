@@ -15,10 +15,15 @@
 #include "base/rng.h"
 #include "scene/bsdf_flags.h"
 #include "scene/material.h"
+#include "scene/microfacet.h"
 
 namespace glint {
 
-BsdfFlags metallic_roughness_flags(const Material& m);
+inline BsdfFlags metallic_roughness_flags(const Material& m) {
+    uint8_t bits = BsdfFlags::reflection | (Ggx::is_smooth(m.roughness) ? BsdfFlags::specular : BsdfFlags::glossy);
+    if (m.metallic < 1 && !is_black(m.albedo)) bits |= BsdfFlags::diffuse;
+    return {bits};
+}
 // n: the unit geometric normal (either side; both are the same surface); wo: toward where the
 // path came from. Takes one number of rng for the lobe, then two for the direction
 // (direction_numbers).

@@ -19,6 +19,8 @@ struct Ggx {
     double alpha;
 
     static double alpha_of(double roughness) { return roughness * roughness; }
+    // Whether a surface of this roughness is handled as smooth.
+    static bool is_smooth(double roughness) { return alpha_of(roughness) < kSmoothAlpha; }
 
     // D(h), for h.z > 0 (0 elsewhere).
     double d(const Vec3& h) const {

@@ -1,20 +1,10 @@
 #include "scene/mirror.h"
 
-#include "scene/microfacet.h"
-
 namespace glint {
 
-BsdfFlags mirror_flags(const Material& m) {
-    const bool smooth = Ggx::alpha_of(m.roughness) < Ggx::kSmoothAlpha;
-    return {uint8_t(BsdfFlags::reflection | (smooth ? BsdfFlags::specular : BsdfFlags::glossy))};
-}
-
-BsdfSample sample_mirror(const Material& m, const Vec3& n, const Vec3& wo, Rng& rng, const double* given) {
+BsdfSample sample_rough_mirror(const Material& m, const Vec3& n, const Vec3& wo, Rng& rng, const double* given) {
     const Ggx ggx{Ggx::alpha_of(m.roughness)};
-    const Vec3 d = -wo;  // the incoming ray, as smallpt writes the reflection
-    const Vec3 facing = dot(n, d) < 0 ? n : -n;
-    if (ggx.alpha < Ggx::kSmoothAlpha) return {d - facing * (2 * dot(facing, d)), m.albedo, 0, mirror_flags(m)};
-    const Frame frame = Frame::around(facing);
+    const Frame frame = Frame::around(dot(n, wo) > 0 ? n : -n);
     const Vec3 o = frame.to_local(wo);
     double u1, u2;
     direction_numbers(rng, given, u1, u2);
