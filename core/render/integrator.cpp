@@ -146,8 +146,8 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, Vert
         if (rng.uniform() >= survive) return false;
         path.throughput *= 1 / survive;
     }
-    const bool diffuse = kind != VertexKind::specular;
-    if (diffuse) {
+    const bool non_specular = kind != VertexKind::specular;
+    if (non_specular) {
         path.caster_pdf = !strategies_.casters().empty() && path.chain == 0 && kind == VertexKind::diffuse
                               ? strategies_.casters().pdf(si.p, bs.wi)
                               : 0;
@@ -157,7 +157,7 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, Vert
         ++path.caster_bounces;
     }
     path.shape = extend(path.shape, kind);
-    path.seen_directly = path.seen_directly && !diffuse;
+    path.seen_directly = path.seen_directly && !non_specular;
     path.specular = bs.is_specular();
     path.previous_kind = kind;
     path.bsdf_pdf = bs.pdf;
