@@ -180,6 +180,18 @@ def plot(curves, path):
     fig.savefig(path)
 
 
+def kept_results(replaced):
+    """The summaries, curves and table rows already in bench/results, less those of `replaced`."""
+    with open(os.path.join(ROOT, "bench", "results", "peer_cycles_summary.json")) as f:
+        summaries = [s for s in json.load(f) if s["scene"] not in replaced]
+    with open(os.path.join(ROOT, "bench", "results", "peer_cycles.csv"), newline="") as f:
+        table = [{k: (v if k in ("scene", "renderer") else float(v)) for k, v in r.items()}
+                 for r in csv.DictReader(f) if r["scene"] not in replaced]
+    curves = [(s["scene"], [r for r in table if r["scene"] == s["scene"] and r["renderer"] == "glint"],
+               [r for r in table if r["scene"] == s["scene"] and r["renderer"] == "cycles"]) for s in summaries]
+    return summaries, curves, table
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--scenes", default=",".join(mesh_scenes() + list(VARIANTS)))
@@ -188,13 +200,15 @@ def main():
     ap.add_argument("--ladder", default="4,16,64,256")
     ap.add_argument("--reference-spp", type=int, default=1024)
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "out", "peer"))
+    ap.add_argument("--update", action="store_true",
+                    help="keep the other scenes' results in bench/results and replace only these scenes'")
     a = ap.parse_args()
     a.ladder = [int(s) for s in a.ladder.split(",")]
     if not shutil.which("blender"):
         subprocess.run(["apt-get", "install", "-y", "--no-install-recommends", "blender"], check=True)
     os.makedirs(a.out, exist_ok=True)
     jobs = [(s, SEEDS["ladder"]) for s in a.ladder] + [(a.reference_spp, s) for s in SEEDS["reference"]]
-    summaries, curves, table = [], [], []
+    summaries, curves, table = kept_results(a.scenes.split(",")) if a.update else ([], [], [])
     for name in a.scenes.split(","):
         copy = box_filter_copy(name)
         try:
