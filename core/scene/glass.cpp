@@ -13,9 +13,9 @@ bool is_smooth(const Material& m) { return Ggx::is_smooth(m.roughness); }
 [[gnu::always_inline]] inline double reflectance(const Material& m, double cos_i, double cos_t, double eta,
                                                  bool entering) {
     if (m.fresnel == FresnelModel::exact) return fresnel_dielectric(cos_i, 1 / eta);
-    const double r0 = ((m.ior - 1) / (m.ior + 1)) * ((m.ior - 1) / (m.ior + 1));
+    const double r0 = dielectric_f0(m.ior);
     const double c = 1 - (entering ? cos_i : cos_t);  // the cosine on the outer side
-    return r0 + (1 - r0) * c * c * c * c * c;
+    return r0 + (1 - r0) * c * c * c * c * c;  // smallpt's order of products (fresnel.h's rounds otherwise)
 }
 
 // smallpt's choice between reflection and refraction, reflectance re.

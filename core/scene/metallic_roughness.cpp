@@ -49,7 +49,7 @@ BsdfValue evaluate_local(const Material& m, const Vec3& o, const Vec3& i) {
 
 BsdfSample sample_metallic_roughness(const Material& m, const Vec3& n, const Vec3& wo, Rng& rng,
                                      const double* given) {
-    const Frame frame = Frame::around(dot(n, wo) > 0 ? n : -n);
+    const Frame frame = facing_frame(n, wo);
     const Vec3 o = frame.to_local(wo);
     const double u_lobe = rng.uniform();
     double u1, u2;
@@ -70,7 +70,7 @@ BsdfSample sample_metallic_roughness(const Material& m, const Vec3& n, const Vec
 }
 
 BsdfValue evaluate_metallic_roughness(const Material& m, const Vec3& n, const Vec3& wo, const Vec3& wi) {
-    const Frame frame = Frame::around(dot(n, wo) > 0 ? n : -n);
+    const Frame frame = facing_frame(n, wo);
     return evaluate_local(m, frame.to_local(wo), frame.to_local(wi));
 }
 

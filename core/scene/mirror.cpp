@@ -4,7 +4,7 @@ namespace glint {
 
 BsdfSample sample_rough_mirror(const Material& m, const Vec3& n, const Vec3& wo, Rng& rng, const double* given) {
     const Ggx ggx{Ggx::alpha_of(m.roughness)};
-    const Frame frame = Frame::around(dot(n, wo) > 0 ? n : -n);
+    const Frame frame = facing_frame(n, wo);
     const Vec3 o = frame.to_local(wo);
     double u1, u2;
     direction_numbers(rng, given, u1, u2);
@@ -18,7 +18,7 @@ BsdfSample sample_rough_mirror(const Material& m, const Vec3& n, const Vec3& wo,
 BsdfValue evaluate_mirror(const Material& m, const Vec3& n, const Vec3& wo, const Vec3& wi) {
     const Ggx ggx{Ggx::alpha_of(m.roughness)};
     if (ggx.alpha < Ggx::kSmoothAlpha) return {};
-    const Frame frame = Frame::around(dot(n, wo) > 0 ? n : -n);
+    const Frame frame = facing_frame(n, wo);
     const MicrofacetReflection r = microfacet_reflection(ggx, frame.to_local(wo), frame.to_local(wi));
     return {m.albedo * r.f_cos, r.pdf};
 }

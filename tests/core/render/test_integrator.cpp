@@ -152,8 +152,8 @@ TEST(Integrator, GlossyHighlightsMatchPlainPathTracing) {
 }
 
 TEST(Integrator, RoughnessBelowTheThresholdIsSmoothAndJustAboveItLooksTheSame) {
-    // 1e-4 is handled as smooth: the same bytes. 0.035 (α = 1.2e-3) is rough, by a lobe a tenth
-    // of a pixel wide here: the same image within noise, so the switch leaves no seam.
+    // 1e-4 is handled as smooth: the same bytes. 0.035 (α = 1.2e-3) is rough, its normals
+    // straying by about 0.07°: the same image within noise, so the switch leaves no seam.
     auto scene = rough_materials_scene();
     scene["film"]["spp"] = 256;
     const auto with_roughness = [&scene](double r) {
