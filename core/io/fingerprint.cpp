@@ -3,6 +3,36 @@
 #include "render/strategies.h"
 
 namespace glint {
+namespace {
+
+void lookup(Fnv1a& h, const Scene& scene, const TextureLookup& t) {
+    size_t index = 0;
+    while (index < scene.textures().size() && scene.textures()[index].get() != t.texture) ++index;
+    h.value(index);
+    h.vec(t.scale);
+    for (double v : {t.uv_scale[0], t.uv_scale[1], t.uv_offset[0], t.uv_offset[1]}) h.value(v);
+    h.value(t.colorspace);
+    h.value(t.channel);
+}
+
+// UVs, vertex normals, textures and what the materials look up in them: nothing for a scene
+// without, so that its fingerprint stays what it was before glint read them.
+void surface_maps(Fnv1a& h, const Scene& scene) {
+    const TriangleAttributes& a = scene.geometry().attributes();
+    h.bytes(a.uvs.data(), a.uvs.size() * sizeof(TriangleUvs));
+    h.bytes(a.normals.data(), a.normals.size() * sizeof(TriangleNormals));
+    for (const auto& t : scene.textures()) {
+        for (int v : {t->width(), t->height(), t->channels()}) h.value(v);
+        h.bytes(t->bytes().data(), t->bytes().size());
+        h.bytes(t->floats().data(), t->floats().size_bytes());
+    }
+    for (const MaterialMaps& m : scene.maps()) {
+        for (const TextureLookup* t : {&m.albedo, &m.roughness, &m.metallic, &m.emission, &m.alpha.alpha}) lookup(h, scene, *t);
+        h.value(m.alpha.cutoff);
+    }
+}
+
+}  // namespace
 
 uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
     Fnv1a h;
@@ -35,7 +65,9 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
             h.value(m.metallic);
             h.value(m.fresnel);
         }
+        if (m.maps != Material::kNoMaps) h.value(m.maps);
     }
+    surface_maps(h, scene);
     h.value(settings.width);
     h.value(settings.height);
     h.value(settings.filter);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <tuple>
 
 namespace glint {
 namespace {
@@ -63,17 +64,46 @@ double roughness(const tinyobj::material_t& mtl) {
 // Kd with a specular colour, or with the PBR extension's roughness or metalness: glTF's
 // dielectric (or, with Pm, its mix with the conductor).
 bool is_plastic(const tinyobj::material_t& mtl) {
-    return !is_black(rgb(mtl.specular)) || mtl.roughness > 0 || mtl.metallic > 0;
+    return !is_black(rgb(mtl.specular)) || mtl.roughness > 0 || mtl.metallic > 0 || !mtl.roughness_texname.empty() ||
+           !mtl.metallic_texname.empty();
 }
 
-void note_textures(const tinyobj::material_t& mtl, ObjMaterial& out) {
-    const std::pair<const std::string*, const char*> maps[] = {
-        {&mtl.diffuse_texname, "map_Kd"},   {&mtl.specular_texname, "map_Ks"}, {&mtl.specular_highlight_texname, "map_Ns"},
-        {&mtl.bump_texname, "bump"},        {&mtl.displacement_texname, "disp"}, {&mtl.alpha_texname, "map_d"},
-        {&mtl.reflection_texname, "refl"},  {&mtl.roughness_texname, "map_Pr"}, {&mtl.metallic_texname, "map_Pm"},
-        {&mtl.emissive_texname, "map_Ke"},  {&mtl.normal_texname, "norm"}};
-    for (const auto& [name, key] : maps)
-        if (!name->empty()) out.ignored.push_back(std::string("texture ") + key + " " + *name);
+MtlTexture texture(const std::string& file, const tinyobj::texture_option_t& options) {
+    MtlTexture t;
+    t.file = file;
+    for (int a = 0; a < 2; ++a) {
+        t.uv_scale[a] = widen(options.scale[a]);
+        t.uv_offset[a] = widen(options.origin_offset[a]);
+    }
+    return t;
+}
+
+// The maps glint reads, where the material's type has the parameter (map_Kd: those whose
+// albedo is Kd, which it replaces); the rest are named as ignored.
+void map_textures(const tinyobj::material_t& mtl, ObjMaterial& out) {
+    const MaterialType type = out.material.type;
+    MtlTextures& t = out.textures;
+    if (has_roughness(type)) {
+        if (!mtl.roughness_texname.empty()) t.roughness = texture(mtl.roughness_texname, mtl.roughness_texopt);
+        else if (!mtl.specular_highlight_texname.empty())
+            t.roughness = texture(mtl.specular_highlight_texname, mtl.specular_highlight_texopt);
+    }
+    if (!mtl.metallic_texname.empty() && has_metallic(type)) t.metallic = texture(mtl.metallic_texname, mtl.metallic_texopt);
+    if (!mtl.alpha_texname.empty()) t.alpha = texture(mtl.alpha_texname, mtl.alpha_texopt);
+    if (!mtl.emissive_texname.empty()) t.emission = texture(mtl.emissive_texname, mtl.emissive_texopt);
+    const bool roughness_from_ns = !t.roughness.file.empty() && mtl.roughness_texname.empty();
+    const std::tuple<const std::string&, const char*, bool> maps[] = {
+        {mtl.diffuse_texname, "map_Kd", !t.albedo.file.empty()},
+        {mtl.specular_texname, "map_Ks", false},
+        {mtl.specular_highlight_texname, "map_Ns", roughness_from_ns},
+        {mtl.roughness_texname, "map_Pr", !t.roughness.file.empty() && !roughness_from_ns},
+        {mtl.metallic_texname, "map_Pm", !t.metallic.file.empty()},
+        {mtl.bump_texname, "bump", false},
+        {mtl.normal_texname, "norm", false},
+        {mtl.displacement_texname, "disp", false},
+        {mtl.reflection_texname, "refl", false}};
+    for (const auto& [name, key, read] : maps)
+        if (!name.empty() && !read) out.ignored.push_back(std::string("texture ") + key + " " + name);
 }
 
 void map_glass(const tinyobj::material_t& mtl, ObjMaterial& out) {
@@ -97,12 +127,14 @@ void map_mirror(const tinyobj::material_t& mtl, ObjMaterial& out) {
 void map_diffuse(const tinyobj::material_t& mtl, ObjMaterial& out) {
     out.material.type = MaterialType::diffuse;
     out.material.albedo = reflectance(rgb(mtl.diffuse), "Kd", out);
+    if (!mtl.diffuse_texname.empty()) out.textures.albedo = texture(mtl.diffuse_texname, mtl.diffuse_texopt);
 }
 
 // The specular layer's colour is the dielectric's, from its index (1.5): Ks only marks it.
 void map_plastic(const tinyobj::material_t& mtl, ObjMaterial& out) {
     out.material.type = MaterialType::plastic;
     out.material.albedo = reflectance(rgb(mtl.diffuse), "Kd", out);
+    if (!mtl.diffuse_texname.empty()) out.textures.albedo = texture(mtl.diffuse_texname, mtl.diffuse_texopt);
     out.material.roughness = roughness(mtl);
     out.material.metallic = std::min(1.0, widen(mtl.metallic));
 }
@@ -111,14 +143,14 @@ void map_plastic(const tinyobj::material_t& mtl, ObjMaterial& out) {
 
 ObjMaterial map_mtl_material(const tinyobj::material_t& mtl) {
     check_colours(mtl);
-    ObjMaterial out{mtl.name, {}, {}};
+    ObjMaterial out{mtl.name, {}, {}, {}};
     if (is_dielectric(mtl)) map_glass(mtl, out);
     else if (is_mirror(mtl)) map_mirror(mtl, out);
     else if (is_plastic(mtl)) map_plastic(mtl, out);
     else map_diffuse(mtl, out);
     out.material.emission = rgb(mtl.emission);
     if (mtl.sheen > 0 || mtl.clearcoat_thickness > 0) out.ignored.push_back("sheen and clearcoat (Ps, Pc)");
-    note_textures(mtl, out);
+    map_textures(mtl, out);
     return out;
 }
 

@@ -21,9 +21,26 @@ struct MtlError : std::runtime_error {
 
 inline constexpr double kMaxMtlEmission = 1e12;
 
+// A texture an MTL material names, with its -s and -o options (what Blender's importer puts in a
+// Mapping node: the lookup at uv·scale + offset).
+struct MtlTexture {
+    std::string file;  // relative to the OBJ's folder; empty: none
+    double uv_scale[2] = {1, 1}, uv_offset[2] = {0, 0};
+};
+
+// The textures of a material that glint reads, as Blender's OBJ importer connects them.
+struct MtlTextures {
+    MtlTexture albedo;     // map_Kd, in place of Kd
+    MtlTexture roughness;  // map_Pr, or else map_Ns, read as roughness
+    MtlTexture metallic;   // map_Pm
+    MtlTexture alpha;      // map_d: a cut-out
+    MtlTexture emission;   // map_Ke, in place of Ke
+};
+
 struct ObjMaterial {
     std::string name;
     Material material;
+    MtlTextures textures;
     // What the library asks for that glint does not model (textures, glossy highlights, ...),
     // one phrase each; empty when the mapping is exact.
     std::vector<std::string> ignored;

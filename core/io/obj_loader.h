@@ -10,6 +10,7 @@
 
 #include "io/mtl_material.h"
 #include "shapes/triangle.h"
+#include "shapes/triangle_attributes.h"
 
 namespace glint {
 
@@ -26,6 +27,10 @@ inline constexpr uint32_t kNoObjMaterial = ~0u;
 struct ObjMesh {
     std::vector<Vec3> vertices;
     std::vector<std::array<uint32_t, 3>> triangles;
+    // Each triangle's corners' texture coordinates (`vt`) and normals (`vn`): empty when the file
+    // gives none; a triangle whose face gives none gets zero UVs or TriangleNormals' mark.
+    std::vector<TriangleUvs> uvs;
+    std::vector<TriangleNormals> normals;
     // When the libraries were read: their materials in file order, and each triangle's index
     // among them (kNoObjMaterial for faces under no `usemtl`, or one the libraries lack).
     std::vector<ObjMaterial> materials;
@@ -42,5 +47,7 @@ ObjMesh load_obj(const std::string& path, size_t max_bytes, const MtlOpener& ope
 
 // The mesh's triangles in its numbering, each vertex placed at v·scale + translate.
 std::vector<Triangle> to_triangles(const ObjMesh& mesh, const Vec3& scale = Vec3{1}, const Vec3& translate = {});
+// The mesh's normals as its triangles are placed by to_triangles (a normal scales by 1/scale).
+std::vector<TriangleNormals> placed_normals(const ObjMesh& mesh, const Vec3& scale);
 
 }  // namespace glint

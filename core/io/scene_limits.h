@@ -37,6 +37,8 @@ struct SceneLimits {
     size_t max_triangles = 4000000;
     size_t max_file_bytes = size_t(512) << 20;
     double max_coordinate = 1e9;  // keeps squared distances far from overflow
+    size_t max_texels_per_file = size_t(1) << 26;  // 8192 × 8192
+    size_t max_texels = size_t(1) << 28;           // all of a scene's textures (1 GiB as 8-bit RGBA)
 };
 
 }  // namespace glint

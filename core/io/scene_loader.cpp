@@ -3,10 +3,12 @@
 #include <nlohmann/json.hpp>
 
 #include <initializer_list>
+#include <map>
 
 #include "base/files.h"
 #include "io/json_text.h"
 #include "io/obj_loader.h"
+#include "io/texture_file.h"
 
 namespace glint {
 namespace {
@@ -119,9 +121,7 @@ public:
         if (integrator.light_tracing == LightTracing::on && camera.aperture > 0)
             root["integrator"]["light_tracing"].fail("\"on\" needs a pinhole camera (camera.aperture 0)");
         if (root.has("objects")) parse_objects(root["objects"]);
-        loaded.scene = std::make_shared<const Scene>(camera, background, integrator, std::move(spheres_),
-                                                     std::move(triangles_), std::move(materials_),
-                                                     std::move(material_of_prim_));
+        loaded.scene = std::make_shared<const Scene>(camera, background, integrator, std::move(surfaces_));
         loaded.warnings = std::move(warnings_);
         return loaded;
     }
@@ -229,7 +229,8 @@ private:
             else parse_mesh(object);
         }
         // Spheres come first in the primitive numbering (see Geometry).
-        material_of_prim_.insert(material_of_prim_.begin(), sphere_materials_.begin(), sphere_materials_.end());
+        std::vector<uint32_t>& of_prim = surfaces_.material_of_prim;
+        of_prim.insert(of_prim.begin(), sphere_materials_.begin(), sphere_materials_.end());
     }
 
     static MaterialType material_type(const At& at) {
@@ -237,34 +238,148 @@ private:
     }
 
     // The fields `at` gives, over `m`. A new type brings its own defaults (material.h) for the
-    // fields not given with it; each field must be one the type has.
-    static Material material_fields(const At& at, Material m, bool with_emission) {
-        if (with_emission) at.expect_object({"type", "albedo", "ior", "roughness", "metallic", "fresnel", "emission"});
-        else at.expect_object({"type", "albedo", "ior", "roughness", "metallic", "fresnel"});
+    // fields not given with it; each field must be one the type has. A colour or number may be
+    // a texture ({"texture": file, ...}), which gives the material maps of its own.
+    Material material_fields(const At& at, Material m, bool with_emission) {
+        if (with_emission) at.expect_object({"type", "albedo", "ior", "roughness", "metallic", "fresnel", "alpha", "alpha_cutoff", "emission"});
+        else at.expect_object({"type", "albedo", "ior", "roughness", "metallic", "fresnel", "alpha", "alpha_cutoff"});
         if (at.has("type")) {
             const MaterialType type = material_type(at["type"]);
             if (type != m.type) m = with_type(m, type);
         }
+        MaterialMaps maps = m.maps == Material::kNoMaps ? MaterialMaps{} : surfaces_.maps[m.maps];
         // Albedo above 1 would create energy.
-        if (at.has("albedo")) m.albedo = at["albedo"].colour(1);
+        if (at.has("albedo")) m.albedo = colour_or_texture(at["albedo"], 1, maps.albedo);
         if (at.has("ior")) m.ior = field_of(at, "ior", has_ior(m.type), "only glass and plastic have an index of refraction").number_in(1e-3, 1e3);
         if (at.has("roughness"))
-            m.roughness = field_of(at, "roughness", has_roughness(m.type), "a diffuse material has no roughness").number_in(0, 1);
+            m.roughness = number_or_texture(field_of(at, "roughness", has_roughness(m.type), "a diffuse material has no roughness"), maps.roughness);
         if (at.has("metallic"))
-            m.metallic = field_of(at, "metallic", has_metallic(m.type), "only metal and plastic have a metallic mix").number_in(0, 1);
+            m.metallic = number_or_texture(field_of(at, "metallic", has_metallic(m.type), "only metal and plastic have a metallic mix"), maps.metallic);
         if (at.has("fresnel")) {
             const At f = field_of(at, "fresnel", has_fresnel(m.type), "only glass has a Fresnel model");
             m.fresnel = f.choice({"schlick", "exact"}) == "exact" ? FresnelModel::exact : FresnelModel::schlick;
         }
-        if (with_emission && at.has("emission")) m.emission = at["emission"].colour(kMaxEmission);
+        if (with_emission && at.has("emission")) m.emission = colour_or_texture(at["emission"], kMaxEmission, maps.emission);
+        if (at.has("alpha")) maps.alpha.alpha = texture_lookup(at["alpha"], Usage::alpha);
+        if (at.has("alpha_cutoff")) {
+            if (!maps.alpha.present()) at["alpha_cutoff"].fail("applies to an \"alpha\" texture, which the material has not");
+            maps.alpha.cutoff = at["alpha_cutoff"].number_in(0, 1);
+        }
+        return with_maps(m, maps);
+    }
+
+    // m with `maps` as its own (a new entry: another material may share m's old one).
+    Material with_maps(Material m, const MaterialMaps& maps) {
+        const bool any = maps.shades() || maps.alpha.present();
+        if (!any) {
+            m.maps = Material::kNoMaps;
+        } else if (m.maps == Material::kNoMaps || !same_maps(surfaces_.maps[m.maps], maps)) {
+            m.maps = uint32_t(surfaces_.maps.size());
+            surfaces_.maps.push_back(maps);
+        }
         return m;
     }
 
-    // m as a material of another type: that type's defaults, m's emission.
-    static Material with_type(const Material& m, MaterialType type) {
+    // m as a material of another type: that type's defaults, m's emission and cut-out.
+    Material with_type(const Material& m, MaterialType type) {
         Material out = default_material(type);
         out.emission = m.emission;
-        return out;
+        if (m.maps == Material::kNoMaps) return out;
+        MaterialMaps kept;
+        kept.emission = surfaces_.maps[m.maps].emission;
+        kept.alpha = surfaces_.maps[m.maps].alpha;
+        return with_maps(out, kept);
+    }
+
+    static bool same_lookup(const TextureLookup& a, const TextureLookup& b) {
+        return a.texture == b.texture && a.scale == b.scale && a.uv_scale[0] == b.uv_scale[0] &&
+               a.uv_scale[1] == b.uv_scale[1] && a.uv_offset[0] == b.uv_offset[0] && a.uv_offset[1] == b.uv_offset[1] &&
+               a.colorspace == b.colorspace && a.channel == b.channel;
+    }
+    static bool same_maps(const MaterialMaps& a, const MaterialMaps& b) {
+        return same_lookup(a.albedo, b.albedo) && same_lookup(a.roughness, b.roughness) &&
+               same_lookup(a.metallic, b.metallic) && same_lookup(a.emission, b.emission) &&
+               same_lookup(a.alpha.alpha, b.alpha.alpha) && a.alpha.cutoff == b.alpha.cutoff;
+    }
+
+    // What a texture gives: a colour (sRGB-decoded by default), an emission (likewise), a
+    // number (roughness, metallic: linear) or a cut-out's alpha (channel a by default).
+    enum class Usage { colour, emission, number, alpha };
+
+    // A colour in [0, max], or a texture (its lookup in `map`, its scale returned).
+    Rgb colour_or_texture(const At& at, double max, TextureLookup& map) {
+        if (!at.value.is_object()) {
+            map = {};
+            return at.colour(max);
+        }
+        map = texture_lookup(at, max == 1 ? Usage::colour : Usage::emission);
+        return map.scale;
+    }
+
+    double number_or_texture(const At& at, TextureLookup& map) {
+        if (!at.value.is_object()) {
+            map = {};
+            return at.number_in(0, 1);
+        }
+        map = texture_lookup(at, Usage::number);
+        return map.scale.x;
+    }
+
+    // {"texture": file, "scale", "uv_scale", "uv_offset", "colorspace", "channel"}.
+    TextureLookup texture_lookup(const At& at, Usage usage) {
+        at.expect_object({"texture", "scale", "uv_scale", "uv_offset", "colorspace", "channel"});
+        if (!at.has("texture")) at.fail("a texture needs a \"texture\" file");
+        TextureLookup t;
+        t.texture = load_texture(at["texture"]);
+        const bool colour = usage == Usage::colour || usage == Usage::emission;
+        t.colorspace = colour ? ColorSpace::srgb : ColorSpace::linear;
+        if (usage == Usage::alpha) t.channel = 3;
+        if (at.has("colorspace"))
+            t.colorspace = at["colorspace"].choice({"srgb", "linear"}) == "srgb" ? ColorSpace::srgb : ColorSpace::linear;
+        if (at.has("channel")) {
+            const std::string c = at["channel"].choice({"r", "g", "b", "a"});
+            t.channel = int(std::string("rgba").find(c));
+        }
+        if (at.has("uv_scale")) uv_pair(at["uv_scale"], t.uv_scale);
+        if (at.has("uv_offset")) uv_pair(at["uv_offset"], t.uv_offset);
+        if (at.has("scale")) {
+            const At scale = at["scale"];
+            if (usage == Usage::colour) t.scale = scale.colour(1);
+            else if (usage == Usage::emission) t.scale = scale.colour(kMaxEmission);
+            else t.scale = Rgb{scale.number_in(0, 1)};
+        }
+        return t;
+    }
+
+    static void uv_pair(const At& at, double (&out)[2]) {
+        if (!at.value.is_array() || at.value.size() != 2) at.fail("must be an array of 2 numbers");
+        for (size_t i = 0; i < 2; ++i) out[i] = at.item(i).number_in(-1e6, 1e6);
+    }
+
+    // A texture file, read once however many materials use it; the scene's texels are bounded
+    // per file and in all.
+    const Texture* load_texture(const At& at) { return load_texture(at, scene_file(at), at.value.get<std::string>()); }
+
+    // The texture file at `full`, which the scene names `name` at `at`.
+    const Texture* load_texture(const At& at, const std::filesystem::path& full, const std::string& name) {
+        if (const auto known = texture_files_.find(full); known != texture_files_.end()) return known->second.get();
+        try {
+            DecodedTexture decoded = decode_texture(read_file(full.string(), limits_.max_file_bytes), name,
+                                                    TextureLimits{limits_.max_texels_per_file});
+            texels_ += size_t(decoded.texture.width()) * size_t(decoded.texture.height());
+            if (texels_ > limits_.max_texels)
+                at.fail("the scene's textures would hold more than " + std::to_string(limits_.max_texels) + " texels");
+            if (decoded.negative_values > 0)
+                warnings_.push_back(at.path + ": " + std::to_string(decoded.negative_values) + " negative values in " + name + " set to 0");
+            auto texture = std::make_shared<const Texture>(std::move(decoded.texture));
+            texture_files_.emplace(full, texture);
+            surfaces_.textures.push_back(texture);
+            return texture.get();
+        } catch (const SceneError&) {
+            throw;
+        } catch (const std::exception& e) {
+            at.fail(e.what());
+        }
     }
 
     // at[key], which the material's type must have (else `message` at its path).
@@ -277,16 +392,20 @@ private:
     static bool has_own_material(const At& object) { return object.has("material") || object.has("emission"); }
 
     // An object's own `material` and `emission`.
-    static Material object_material(const At& object) {
+    Material object_material(const At& object) {
         Material m;
         if (object.has("material")) m = material_fields(object["material"], m, false);
         if (object.has("emission")) m.emission = object["emission"].colour(kMaxEmission);
+        // Light sampling picks points over a light's whole area.
+        if (m.is_emissive() && has_cutout(m)) object["material"]["alpha"].fail("an emitter cannot have cut-outs");
         return m;
     }
 
+    bool has_cutout(const Material& m) const { return m.maps != Material::kNoMaps && surfaces_.maps[m.maps].alpha.present(); }
+
     uint32_t add_material(const Material& m) {
-        materials_.push_back(m);
-        return uint32_t(materials_.size() - 1);
+        surfaces_.materials.push_back(m);
+        return uint32_t(surfaces_.materials.size() - 1);
     }
 
     void parse_sphere(const At& at) {
@@ -294,33 +413,50 @@ private:
         if (!at.has("center")) at.fail("a sphere needs a \"center\"");
         if (!at.has("radius")) at.fail("a sphere needs a \"radius\"");
         const Sphere s{at["center"].vec3(limits_.max_coordinate), at["radius"].positive(limits_.max_coordinate)};
-        spheres_.push_back(s);
-        sphere_materials_.push_back(add_material(object_material(at)));
+        surfaces_.spheres.push_back(s);
+        const Material m = object_material(at);
+        if (has_cutout(m)) at["material"]["alpha"].fail("cut-outs apply to meshes only");
+        sphere_materials_.push_back(add_material(m));
     }
 
     void parse_mesh(const At& at) {
-        at.expect_object({"type", "file", "vertices", "indices", "scale", "translate", "material", "materials", "emission"});
+        at.expect_object({"type", "file", "vertices", "indices", "uvs", "normals", "scale", "translate", "material",
+                          "materials", "emission"});
         ObjMesh mesh;
         if (at.has("file")) {
-            if (at.has("vertices") || at.has("indices")) at.fail("give either file or vertices and indices, not both");
+            for (const char* key : {"vertices", "indices", "uvs", "normals"})
+                if (at.has(key)) at[key].fail("a mesh file gives its own; give either file or vertices and indices");
             // The object's own material replaces the library's, which is then read only for
             // the names `materials` overrides.
             mesh = load_mesh_file(at["file"], !has_own_material(at) || at.has("materials"));
         } else {
             if (!at.has("vertices") || !at.has("indices")) at.fail("a mesh needs a \"file\", or \"vertices\" and \"indices\"");
             if (at.has("materials")) at["materials"].fail("only a mesh file's materials can be overridden by name");
-            mesh = parse_inline_mesh(at["vertices"], at["indices"]);
+            mesh = parse_inline_mesh(at);
         }
         const Vec3 scale = at.has("scale") ? parse_scale(at["scale"]) : Vec3{1};
         const Vec3 translate = at.has("translate") ? at["translate"].vec3(limits_.max_coordinate) : Vec3{};
-        if (triangles_.size() + mesh.triangles.size() > limits_.max_triangles)
+        std::vector<Triangle>& triangles = surfaces_.triangles;
+        if (triangles.size() + mesh.triangles.size() > limits_.max_triangles)
             at.fail("too many triangles in the scene (limit " + std::to_string(limits_.max_triangles) + ")");
         for (const Vec3& v : mesh.vertices)
             if (!(max_component(abs(v * scale + translate)) <= limits_.max_coordinate))
                 at.fail("a vertex lies beyond the coordinate limit " + At::format(limits_.max_coordinate));
         assign_mesh_materials(at, mesh);
+        add_attributes(surfaces_.attributes.uvs, mesh.uvs, mesh.triangles.size());
+        add_attributes(surfaces_.attributes.normals, placed_normals(mesh, scale), mesh.triangles.size());
         const std::vector<Triangle> placed = to_triangles(mesh, scale, translate);
-        triangles_.insert(triangles_.end(), placed.begin(), placed.end());
+        triangles.insert(triangles.end(), placed.begin(), placed.end());
+    }
+
+    // A mesh's per-triangle attributes (`given`, or none) after the scene's: the scene keeps one
+    // per triangle once some mesh gives them, defaults for the triangles of meshes that do not.
+    template <typename T>
+    void add_attributes(std::vector<T>& scene, const std::vector<T>& given, size_t count) const {
+        if (given.empty() && scene.empty()) return;
+        scene.resize(surfaces_.triangles.size());
+        if (given.empty()) scene.resize(scene.size() + count);
+        else scene.insert(scene.end(), given.begin(), given.end());
     }
 
     Vec3 parse_scale(const At& s) const {
@@ -336,26 +472,62 @@ private:
         const Material own = object_material(at);
         const uint32_t fallback = add_material(own);
         if (mesh.triangle_material.empty()) {
-            material_of_prim_.insert(material_of_prim_.end(), mesh.triangles.size(), fallback);
+            surfaces_.material_of_prim.insert(surfaces_.material_of_prim.end(), mesh.triangles.size(), fallback);
             return;
         }
-        const bool replaced = has_own_material(at);
-        std::vector<Material> library;
-        for (const ObjMaterial& m : mesh.materials) library.push_back(replaced ? own : m.material);
-        if (at.has("materials")) override_by_name(at["materials"], mesh.materials, library);
-        const auto first = uint32_t(materials_.size());
-        materials_.insert(materials_.end(), library.begin(), library.end());
-        std::vector<bool> used(library.size());
-        for (const uint32_t m : mesh.triangle_material) {
-            material_of_prim_.push_back(m == kNoObjMaterial ? fallback : first + m);
+        std::vector<bool> used(mesh.materials.size());
+        for (const uint32_t m : mesh.triangle_material)
             if (m != kNoObjMaterial) used[m] = true;
-        }
+        const bool replaced = has_own_material(at);
+        const std::filesystem::path obj_folder = std::filesystem::path(at["file"].value.get<std::string>()).parent_path();
+        std::vector<Material> library;
+        for (size_t i = 0; i < mesh.materials.size(); ++i)
+            library.push_back(replaced ? own : used[i] ? with_textures(at["file"], obj_folder, mesh.materials[i]) : mesh.materials[i].material);
+        if (at.has("materials")) override_by_name(at["materials"], mesh.materials, library);
+        std::vector<Material>& materials = surfaces_.materials;
+        const auto first = uint32_t(materials.size());
+        materials.insert(materials.end(), library.begin(), library.end());
+        for (const uint32_t m : mesh.triangle_material)
+            surfaces_.material_of_prim.push_back(m == kNoObjMaterial ? fallback : first + m);
         for (const std::string& w : mesh.warnings) warnings_.push_back(at["file"].path + ": " + w);
         for (size_t i = 0; i < library.size(); ++i)
             if (used[i] && !replaced) warn_ignored(at["file"], mesh.materials[i]);
     }
 
-    void override_by_name(const At& at, const std::vector<ObjMaterial>& names, std::vector<Material>& library) const {
+    // A library material with the textures it names (relative to the OBJ's folder) read.
+    Material with_textures(const At& file, const std::filesystem::path& obj_folder, const ObjMaterial& m) {
+        const MtlTextures& t = m.textures;
+        MaterialMaps maps;
+        const auto lookup = [&](const MtlTexture& texture, ColorSpace colorspace, TextureLookup& out) {
+            if (texture.file.empty()) return;
+            const auto full = std::filesystem::path(texture.file).has_root_path()
+                                  ? std::nullopt
+                                  : resolve_inside(folder_, (obj_folder / texture.file).string());
+            const std::string what = "material \"" + m.name + "\": texture " + texture.file;
+            if (!full) file.fail(what + ": must stay inside the scene's folder");
+            out.texture = load_texture(file, *full, texture.file);
+            out.colorspace = colorspace;
+            for (int a = 0; a < 2; ++a) {
+                out.uv_scale[a] = texture.uv_scale[a];
+                out.uv_offset[a] = texture.uv_offset[a];
+            }
+        };
+        lookup(t.albedo, ColorSpace::srgb, maps.albedo);
+        lookup(t.roughness, ColorSpace::linear, maps.roughness);
+        lookup(t.metallic, ColorSpace::linear, maps.metallic);
+        lookup(t.emission, ColorSpace::srgb, maps.emission);
+        lookup(t.alpha, ColorSpace::linear, maps.alpha.alpha);
+        // A mask's alpha channel, or the grey of an image without one.
+        if (maps.alpha.present()) maps.alpha.alpha.channel = maps.alpha.alpha.texture->channels() % 2 == 0 ? 3 : 0;
+        Material out = m.material;
+        if (maps.has(maps.albedo)) out.albedo = Rgb{1};
+        if (maps.has(maps.emission)) out.emission = Rgb{1};
+        if (maps.has(maps.roughness)) out.roughness = 1;
+        if (maps.has(maps.metallic)) out.metallic = 1;
+        return with_maps(out, maps);
+    }
+
+    void override_by_name(const At& at, const std::vector<ObjMaterial>& names, std::vector<Material>& library) {
         if (!at.value.is_object()) at.fail("must be an object of material names");
         for (const auto& item : at.value.items()) {
             size_t i = 0;
@@ -373,7 +545,8 @@ private:
         warnings_.push_back(file.path + ": material \"" + m.name + "\": ignored " + list);
     }
 
-    ObjMesh load_mesh_file(const At& at, bool with_materials) const {
+    // The file `at` names, relative to the scene's folder and inside it.
+    std::filesystem::path scene_file(const At& at) const {
         if (!at.value.is_string()) at.fail("must be a file name");
         const std::filesystem::path name = at.value.get<std::string>();
         if (folder_.empty()) at.fail("file references need a scene folder");
@@ -381,8 +554,14 @@ private:
         // Symlinks and ".." are resolved first: the file itself must lie inside the folder.
         const auto full = resolve_inside(folder_, name.string());
         if (!full) at.fail("must stay inside the scene's folder");
+        return *full;
+    }
+
+    ObjMesh load_mesh_file(const At& at, bool with_materials) const {
+        const std::filesystem::path full = scene_file(at);
+        const std::filesystem::path name = at.value.get<std::string>();
         try {
-            return load_obj(full->string(), limits_.max_file_bytes,
+            return load_obj(full.string(), limits_.max_file_bytes,
                             with_materials ? library_opener(name.parent_path()) : MtlOpener{});
         } catch (const std::exception& e) {
             at.fail(e.what());
@@ -401,7 +580,8 @@ private:
         };
     }
 
-    ObjMesh parse_inline_mesh(const At& vertices, const At& indices) const {
+    ObjMesh parse_inline_mesh(const At& at) const {
+        const At vertices = at["vertices"], indices = at["indices"];
         if (!vertices.value.is_array()) vertices.fail("must be an array of [x, y, z]");
         if (!indices.value.is_array()) indices.fail("must be an array of [i, j, k]");
         if (indices.value.size() > limits_.max_triangles) indices.fail("too many triangles");
@@ -415,15 +595,40 @@ private:
             mesh.triangles.push_back({uint32_t(tri.item(0).integer(0, max_index)), uint32_t(tri.item(1).integer(0, max_index)),
                                       uint32_t(tri.item(2).integer(0, max_index))});
         }
+        if (at.has("uvs")) mesh.uvs = per_corner<TriangleUvs, 2>(at["uvs"], mesh, 1e6);
+        if (at.has("normals")) mesh.normals = per_corner<TriangleNormals, 3>(at["normals"], mesh, 1e6);
         return mesh;
     }
 
+    // One N-vector per vertex (UVs, normals), as each triangle's corners take them.
+    template <typename T, size_t N>
+    static std::vector<T> per_corner(const At& at, const ObjMesh& mesh, double max_abs) {
+        if (!at.value.is_array() || at.value.size() != mesh.vertices.size())
+            at.fail("must be an array of one [" + std::string(N == 2 ? "u, v" : "x, y, z") + "] per vertex (" +
+                    std::to_string(mesh.vertices.size()) + ")");
+        std::vector<std::array<float, N>> values;
+        for (size_t i = 0; i < at.value.size(); ++i) {
+            const At item = at.item(i);
+            if (!item.value.is_array() || item.value.size() != N) item.fail("must be an array of " + std::to_string(N) + " numbers");
+            std::array<float, N> v;
+            for (size_t a = 0; a < N; ++a) v[a] = float(item.item(a).number_in(-max_abs, max_abs));
+            values.push_back(v);
+        }
+        std::vector<T> out(mesh.triangles.size());
+        for (size_t t = 0; t < mesh.triangles.size(); ++t)
+            for (int k = 0; k < 3; ++k)
+                for (size_t a = 0; a < N; ++a) corner_of(out[t], k)[a] = values[mesh.triangles[t][k]][a];
+        return out;
+    }
+    static float* corner_of(TriangleUvs& t, int k) { return t.uv[k]; }
+    static float* corner_of(TriangleNormals& t, int k) { return t.n[k]; }
+
     std::filesystem::path folder_;
     SceneLimits limits_;
-    std::vector<Sphere> spheres_;
-    std::vector<Triangle> triangles_;
-    std::vector<Material> materials_;
-    std::vector<uint32_t> sphere_materials_, material_of_prim_;
+    SceneSurfaces surfaces_;
+    std::vector<uint32_t> sphere_materials_;
+    std::map<std::filesystem::path, std::shared_ptr<const Texture>> texture_files_;  // by resolved path
+    size_t texels_ = 0;
     std::vector<std::string> warnings_;
 };
 

@@ -8,7 +8,7 @@ namespace glint {
 CasterSampler::CasterSampler(const Scene& scene) {
     const Geometry& geometry = scene.geometry();
     for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim)
-        if (geometry.is_sphere(prim) && Bsdf::flags(scene.material(prim)).is_specular())
+        if (geometry.is_sphere(prim) && scene.flags(prim).is_specular())
             casters_.push_back({geometry.sphere(prim).centre, geometry.sphere(prim).radius});
 }
 

@@ -8,8 +8,7 @@
 namespace glint {
 namespace {
 
-bool is_specular(const Material& m) { return Bsdf::flags(m).is_specular(); }
-bool transmits(const Material& m) { return Bsdf::flags(m).has(BsdfFlags::transmission); }
+bool transmits(const Scene& scene, uint32_t prim) { return scene.flags(prim).has(BsdfFlags::transmission); }
 
 }  // namespace
 
@@ -20,7 +19,7 @@ SphereCap CausticEmitter::cap_for(const Scene& scene, uint32_t light_prim, uint3
     // Horizon: x sees some point of the target only if w·axis > (r - r_target) / dist.
     SphereCap best{(target.centre - light.centre) / dist, std::min(2.0, 1 - (light.radius - target.radius) / dist)};
     for (uint32_t prim = 0; prim < geometry.sphere_count(); ++prim) {
-        if (prim == light_prim || prim == target_prim || transmits(scene.material(prim)))
+        if (prim == light_prim || prim == target_prim || transmits(scene, prim))
             continue;
         const Sphere& o = geometry.sphere(prim);
         const double target_dist = length(target.centre - o.centre);
@@ -37,11 +36,12 @@ CausticEmitter::CausticEmitter(const Scene& scene) : geometry_(&scene.geometry()
     std::vector<double> flux;
     for (uint32_t light = 0; light < geometry.sphere_count(); ++light) {
         const Material& lm = scene.material(light);
-        if (!lm.is_emissive()) continue;
+        // A textured light's emission varies over it: left to the path tracer.
+        if (!lm.is_emissive() || lm.maps != Material::kNoMaps) continue;
         const Sphere& ls = geometry.sphere(light);
         for (uint32_t target = 0; target < geometry.sphere_count(); ++target) {
             const Material& tm = scene.material(target);
-            if (!is_specular(tm) || tm.is_emissive()) continue;
+            if (!scene.flags(target).is_specular() || tm.is_emissive()) continue;
             const Sphere& ts = geometry.sphere(target);
             const double dist = length(ts.centre - ls.centre);
             if (!(dist > ls.radius + ts.radius)) continue;  // overlapping: leave to the path tracer

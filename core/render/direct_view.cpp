@@ -14,7 +14,7 @@ bool may_see_direct_view(const Scene& scene, const Camera& camera, Filter filter
     const Geometry& geometry = scene.geometry();
     for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim) {
         const Material& m = scene.material(prim);
-        if (m.is_emissive() || Bsdf::flags(m).is_specular()) {
+        if (m.is_emissive() || scene.flags(prim).is_specular()) {
             const Bounds3 box = geometry.is_sphere(prim) ? geometry.sphere(prim).bounds() : geometry.triangle(prim).bounds();
             if (camera.may_see(box, filter_margin(filter))) return true;
         }

@@ -47,6 +47,7 @@ Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const 
     LightSample ls;
     const Vec3 facing = dot(d, si.n) < 0 ? si.n : -si.n;
     if (!scene_.lights().sample(si.p, si.prim, u1, u2, ls, facing)) return Rgb{0};
+    if (scene_.material(ls.prim).maps != Material::kNoMaps) ls.emission = scene_.emission_at(si.p, ls);
     const BsdfValue f = bsdf.evaluate(-d, ls.wi);
     Rgb value = beta * f.f_cos * ls.emission * (power_heuristic(ls.pdf, f.pdf) / ls.pdf);
     if (!survives_roulette(value, kShadowRoulette, rng)) return Rgb{0};
@@ -93,11 +94,12 @@ Rgb PathTracer::through_caster(const SurfaceInteraction& x, const Vec3& d, const
     for (int bounces = 0;; ++bounces) {  // specular vertices behind the ray
         Hit hit;
         if (!scene_.geometry().intersect(ray, self, hit)) break;
-        const Material& hm = scene_.material(hit.prim);
-        if (bounces > 0) result += throughput * hm.emission;  // at 0 it is light sampling's
-        if (!Bsdf::flags(hm).is_specular() || bounces == kMaxCasterBounces) break;
         const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
-        const BsdfSample bs = Bsdf(hm, si.n).sample(-ray.d, rng);
+        Material scratch;
+        const Material& hm = scene_.material_at(si, scratch);
+        if (bounces > 0) result += throughput * hm.emission;  // at 0 it is light sampling's
+        if (!scene_.flags(hit.prim).is_specular() || bounces == kMaxCasterBounces) break;
+        const BsdfSample bs = Bsdf(hm, si, -ray.d).sample(-ray.d, rng);
         throughput *= bs.weight;
         if (is_black(throughput)) break;
         ray = spawn_ray(si, bs.wi);
@@ -116,6 +118,13 @@ double PathTracer::bounce_weight(double density_over_pi, const Ray& ray, const S
     const double pdf = emitter.pdf(si.prim, si.p, d_out);
     if (!(pdf > 0)) return 1;
     return 1 - light_side_weight(density_over_pi, cos_out / pdf);
+}
+
+Rgb PathTracer::emission_at(const Ray& ray, const Hit& hit) const {
+    const Material& m = scene_.material(hit.prim);
+    if (m.maps == Material::kNoMaps) return m.emission;
+    Material scratch;
+    return scene_.material_at(scene_.geometry().interaction(ray, hit), scratch).emission;
 }
 
 Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light, const FirstVertexSamples* first,
@@ -215,6 +224,7 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov
     const IntegratorSettings& settings = scene_.integrator();
     const bool nee = settings.light_sampling && !scene_.lights().empty();
     Rgb result{0};
+    Material scratch;  // the material at a textured surface's point
     for (;;) {
         const Ray& ray = path.ray;
         Hit hit;
@@ -222,16 +232,16 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov
             if (path.counts_found_light()) result += path.throughput * scene_.background();
             break;
         }
-        const Material& m = scene_.material(hit.prim);
-        const BsdfFlags flags = Bsdf::flags(m);
+        const BsdfFlags flags = scene_.flags(hit.prim);
         const VertexKind kind = vertex_kind(flags);
         const bool specular = kind == VertexKind::specular;
         if (!specular && path.direct_view == DirectView::alone) {  // the direct view ends here
-            if (m.is_emissive()) result += path.throughput * m.emission;
+            if (scene_.material(hit.prim).is_emissive()) result += path.throughput * emission_at(ray, hit);
             break;
         }
         const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
-        const Bsdf bsdf(m, si.n);
+        const Material& m = scene_.material_at(si, scratch);
+        const Bsdf bsdf(m, si, -ray.d);
         if (aov) aov = note_aov(aov, path, hit.t, si, bsdf, specular);
         // Caustic paths that light tracing covers are its alone (mis.h).
         const bool traced_from_light = strategies_.light_tracing() && path.shape == PathShape::caustic &&

@@ -134,6 +134,8 @@ private:
     // strategy could also have found it (mis.h): next-event estimation, a light path or the
     // CasterSampler; 1 where none could.
     double found_light_weight(const PathState& path, const SurfaceInteraction& si, bool nee) const;
+    // The emission of the surface `hit` along `ray`, textured or not.
+    Rgb emission_at(const Ray& ray, const Hit& hit) const;
     // What non-specular vertex si gathers, added to `result` in turn: next-event estimation
     // (with `first`'s numbers, if given), and at a diffuse vertex the connections to the light
     // path's vertices and the light through casters; also notes where the path stands in a

@@ -38,8 +38,7 @@ bool LightTracer::to_diffuse(Ray ray, uint32_t self, uint32_t light, Rgb& throug
     for (bool first = true; ++hits <= settings.max_depth; first = false) {
         Hit hit;
         if (!scene_.geometry().intersect(ray, self, hit)) return false;
-        const Material& m = scene_.material(hit.prim);
-        const BsdfFlags flags = Bsdf::flags(m);
+        const BsdfFlags flags = scene_.flags(hit.prim);
         const bool diffuse = flags.is_diffuse();
         // Other first surfaces are the path tracer's paths (or a connection's); a glossy surface
         // ends a light path, whose weights assume diffuse and specular vertices only (mis.h).
@@ -52,7 +51,8 @@ bool LightTracer::to_diffuse(Ray ray, uint32_t self, uint32_t light, Rgb& throug
         // Specular BSDFs carry no η², and their Fresnel terms are the same from either side
         // (Schlick's uses the outer cosine), so sampling them from the light side gives the
         // adjoint weights.
-        const BsdfSample bs = Bsdf(m, si.n).sample(-ray.d, rng);
+        Material scratch;
+        const BsdfSample bs = Bsdf(scene_.material_at(si, scratch), si, -ray.d).sample(-ray.d, rng);
         throughput *= bs.weight;
         if (is_black(throughput)) return false;
         if (hits > settings.rr_depth) {
@@ -79,7 +79,8 @@ LightPath LightTracer::trace(Rng& rng) const {
     for (uint32_t light = e.light; path.size < kLightVertices; light = kNoPrimitive) {
         LightVertex& v = path.vertices[path.size];
         if (!to_diffuse(ray, self, light, throughput, hits, rng, v.si, v.d_in)) break;
-        const Bsdf bsdf(scene_.material(v.si.prim), v.si.n);
+        Material scratch;
+        const Bsdf bsdf(scene_.material_at(v.si, scratch), v.si, -v.d_in);
         v.beta = e.weight * throughput;
         v.albedo = bsdf.albedo();
         v.emitted_ratio = e.emitted_ratio;

@@ -8,14 +8,21 @@
 #include "scene/lambertian.h"
 #include "scene/metallic_roughness.h"
 #include "scene/mirror.h"
+#include "scene/shading_normal.h"
+#include "shapes/interaction.h"
 
 namespace glint {
 
 class Bsdf {
 public:
     // n: the unit geometric normal at the point (outward for spheres, by winding for triangles).
-    Bsdf(const Material& m, const Vec3& n) : m_(m), n_(n) {}
+    Bsdf(const Material& m, const Vec3& n) : m_(m), n_(n), ng_(n) {}
     Bsdf(Material&&, const Vec3&) = delete;  // it keeps a reference: no temporaries
+    // At si, seen from wo: where si has a shading normal, the lobes are about it, bent for wo and
+    // held to the geometric surface's sides (shading_normal.h).
+    Bsdf(const Material& m, const SurfaceInteraction& si, const Vec3& wo)
+        : m_(m), n_(si.ns == si.n ? si.n : shading_normal(si.n, si.ns, wo)), ng_(si.n), shaded_(!(si.ns == si.n)) {}
+    Bsdf(Material&&, const SurfaceInteraction&, const Vec3&) = delete;
 
     // The flags of m's BSDF anywhere on its surface.
     static BsdfFlags flags(const Material& m) {
@@ -34,22 +41,14 @@ public:
     // non-specular direction takes instead of rng's (a stratified pair). What each material
     // draws, and in which order, is in its file; a weight of 0 is a failed sample.
     BsdfSample sample(const Vec3& wo, Rng& rng, const double* given = nullptr) const {
-        switch (m_.type) {
-            case MaterialType::diffuse: {
-                double u1, u2;
-                direction_numbers(rng, given, u1, u2);
-                return sample_lambertian(m_, n_, wo, u1, u2);
-            }
-            case MaterialType::mirror: return sample_mirror(m_, n_, wo, rng, given);
-            case MaterialType::glass: return sample_glass(m_, n_, wo, rng, given);
-            case MaterialType::metal:
-            case MaterialType::plastic: return sample_metallic_roughness(m_, n_, wo, rng, given);
-        }
-        return {};
+        BsdfSample bs = sample_lobes(wo, rng, given);
+        if (shaded_ && !sides_agree(ng_, n_, wo, bs.wi)) bs.weight = Rgb{0};
+        return bs;
     }
 
     // f(wo, wi)·|cos θi| over the non-specular lobes, and the pdf with which sample() picks wi.
     BsdfValue evaluate(const Vec3& wo, const Vec3& wi) const {
+        if (shaded_ && !sides_agree(ng_, n_, wo, wi)) return {};
         switch (m_.type) {
             case MaterialType::diffuse: return evaluate_lambertian(m_, n_, wo, wi);
             case MaterialType::mirror: return evaluate_mirror(m_, n_, wo, wi);
@@ -66,7 +65,10 @@ public:
     // continuations, each weighted by its share, instead of one picked at random; false where
     // there are not two.
     bool split(const Vec3& wo, BsdfSample& reflected, BsdfSample& transmitted) const {
-        return m_.type == MaterialType::glass && split_glass(m_, n_, wo, reflected, transmitted);
+        if (m_.type != MaterialType::glass || !split_glass(m_, n_, wo, reflected, transmitted)) return false;
+        if (shaded_ && !sides_agree(ng_, n_, wo, reflected.wi)) reflected.weight = Rgb{0};
+        if (shaded_ && !sides_agree(ng_, n_, wo, transmitted.wi)) transmitted.weight = Rgb{0};
+        return true;
     }
 
     // The reflectance a denoiser's albedo feature and a diffuse light vertex take: the material's
@@ -74,8 +76,25 @@ public:
     const Rgb& albedo() const { return m_.albedo; }
 
 private:
+    BsdfSample sample_lobes(const Vec3& wo, Rng& rng, const double* given) const {
+        switch (m_.type) {
+            case MaterialType::diffuse: {
+                double u1, u2;
+                direction_numbers(rng, given, u1, u2);
+                return sample_lambertian(m_, n_, wo, u1, u2);
+            }
+            case MaterialType::mirror: return sample_mirror(m_, n_, wo, rng, given);
+            case MaterialType::glass: return sample_glass(m_, n_, wo, rng, given);
+            case MaterialType::metal:
+            case MaterialType::plastic: return sample_metallic_roughness(m_, n_, wo, rng, given);
+        }
+        return {};
+    }
+
     const Material& m_;
-    Vec3 n_;
+    Vec3 n_;   // the lobes' normal: the geometric one, or the shading normal bent for wo
+    Vec3 ng_;  // the geometric normal
+    bool shaded_ = false;
 };
 
 }  // namespace glint

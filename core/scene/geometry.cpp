@@ -1,6 +1,7 @@
 #include "scene/geometry.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace glint {
@@ -76,12 +77,8 @@ void Geometry::store_runs(const std::vector<PackedTriangle>& packed, const std::
 size_t Geometry::memory_bytes() const {
     return sphere_bvh_.memory_bytes() + sphere_bvh_.order().size() * sizeof(uint32_t) + triangle_bvh_.memory_bytes() +
            triangle_runs_.size() * sizeof(float) + run_slot_.size() +
-           (triangle_at_.size() + position_of_.size()) * sizeof(uint32_t);
-}
-
-uint32_t Geometry::triangle_index(uint32_t prim) const {
-    if (prim < spheres_.size() || prim - spheres_.size() >= triangle_count_) return kNoPrimitive;
-    return static_cast<uint32_t>(prim - spheres_.size());
+           (triangle_at_.size() + position_of_.size()) * sizeof(uint32_t) +
+           attributes_.uvs.size() * sizeof(TriangleUvs) + attributes_.normals.size() * sizeof(TriangleNormals);
 }
 
 uint32_t Geometry::position(uint32_t prim) const {
@@ -117,7 +114,13 @@ inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const 
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto test_run = [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
-        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lanes_of(skip, first), r, hit.triangle);
+        const float* run = &triangle_runs_[9 * size_t(first)];
+        unsigned left_out = lanes_of(skip, first);
+        int i = run_test.closest(run, count, left_out, r, hit.triangle);
+        while (i >= 0 && has_cutouts() && cut_away(first + uint32_t(i), hit.triangle)) {
+            left_out |= 1u << i;
+            i = run_test.closest(run, count, left_out, r, hit.triangle);
+        }
         if (i < 0) return false;
         const uint32_t pos = first + static_cast<uint32_t>(i);
         hit.t = r.tmax = hit.triangle.t;
@@ -187,8 +190,13 @@ inline bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t ta
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) __attribute__((always_inline)) {
-        const unsigned left_out = lanes_of(skip, first) | lanes_of(wanted, first);
-        return run_test.any(&triangle_runs_[9 * size_t(first)], count, left_out, r);
+        const float* run = &triangle_runs_[9 * size_t(first)];
+        unsigned left_out = lanes_of(skip, first) | lanes_of(wanted, first);
+        if (!has_cutouts()) return run_test.any(run, count, left_out, r);
+        TriangleHit h;
+        for (int i; (i = run_test.closest(run, count, left_out, r, h)) >= 0; left_out |= 1u << i)
+            if (!cut_away(first + uint32_t(i), h)) return true;
+        return false;
     };
     if (accelerator_ == Accelerator::bvh) return triangle_bvh_.any(ray, blocks);
     for (uint32_t pos = 0; pos < triangle_count_; ++pos)
@@ -217,7 +225,40 @@ bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
 
 SurfaceInteraction Geometry::interaction(const Ray& ray, const Hit& hit) const {
     if (is_sphere(hit.prim)) return spheres_[hit.prim].interaction(ray, hit.t, hit.prim);
-    return triangle(hit.prim).interaction(hit.triangle, hit.prim);
+    SurfaceInteraction si = triangle(hit.prim).interaction(hit.triangle, hit.prim);
+    if (smooth(hit.prim)) {
+        const Vec3 ns = attributes_.normals[triangle_index(hit.prim)].at(si.b1, si.b2);
+        const double length2 = dot(ns, ns);
+        // Corner normals that cancel, or overflow, leave the geometric normal.
+        if (length2 > 0 && std::isfinite(length2)) si.ns = dot(ns, si.n) < 0 ? -ns / std::sqrt(length2) : ns / std::sqrt(length2);
+    }
+    return si;
+}
+
+void Geometry::attach(TriangleAttributes attributes, CutOuts cutouts) {
+    const auto fits = [&](size_t n) { return n == 0 || n == triangle_count_; };
+    if (!fits(attributes.uvs.size()) || !fits(attributes.normals.size()) || !fits(cutouts.mask_of_triangle.size()))
+        throw std::invalid_argument("triangle attributes: one per triangle or none");
+    attributes_ = std::move(attributes);
+    cutouts_ = std::move(cutouts);
+    if (cutouts_.mask_of_triangle.empty()) cutouts_.masks.clear();
+}
+
+bool Geometry::cut_away(uint32_t pos, const TriangleHit& hit) const {
+    const uint32_t index = triangle_at_.empty() ? pos : triangle_at_[pos];
+    const uint32_t mask = cutouts_.mask_of_triangle[index];
+    if (mask == CutOuts::kNoMask) return false;
+    const Uv uv = attributes_.uvs.empty() ? Uv{} : attributes_.uvs[index].at(hit.b1, hit.b2);
+    return !cutouts_.masks[mask].keeps(uv);
+}
+
+Uv Geometry::uv(const SurfaceInteraction& si) const {
+    if (is_sphere(si.prim)) {
+        const Vec3 d = si.n;
+        return {0.5 + std::atan2(d.z, d.x) / (2 * kPi), 0.5 + std::asin(std::clamp(d.y, -1.0, 1.0)) / kPi};
+    }
+    if (attributes_.uvs.empty()) return {};
+    return attributes_.uvs[triangle_index(si.prim)].at(si.b1, si.b2);
 }
 
 }  // namespace glint

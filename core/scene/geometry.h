@@ -5,9 +5,11 @@
 #include <vector>
 
 #include "accel/bvh.h"
+#include "scene/alpha_mask.h"
 #include "shapes/sphere.h"
 #include "shapes/sphere_list.h"
 #include "shapes/triangle.h"
+#include "shapes/triangle_attributes.h"
 
 namespace glint {
 
@@ -24,6 +26,13 @@ inline constexpr uint32_t kListMaxPrimitives = 16;
 enum class Isa { avx2, avx512 };
 // The widest this processor and its operating system support, found once per process.
 Isa best_isa();
+
+// The triangles' cut-outs: each triangle's mask among `masks`, or kNoMask.
+struct CutOuts {
+    std::vector<AlphaMask> masks;
+    std::vector<uint32_t> mask_of_triangle;  // empty, or one per triangle
+    static constexpr uint32_t kNoMask = ~0u;
+};
 
 struct Hit {
     double t = kInfinity;
@@ -65,6 +74,20 @@ public:
     Isa isa() const { return isa_; }
     // Runs the triangle queries in `isa` (tests compare the paths); it must not exceed best_isa().
     void set_isa(Isa isa);
+    // Gives the triangles their UVs and vertex normals (each list empty or one per triangle),
+    // and their cut-outs, which every query then looks through.
+    void attach(TriangleAttributes attributes, CutOuts cutouts = {});
+    bool has_cutouts() const { return !cutouts_.masks.empty(); }
+    const TriangleAttributes& attributes() const { return attributes_; }
+    // Whether primitive `prim` is shaded by vertex normals.
+    bool smooth(uint32_t prim) const {
+        const uint32_t index = triangle_index(prim);
+        return index != kNoPrimitive && !attributes_.normals.empty() && attributes_.normals[index].present();
+    }
+    // The texture coordinates at si: a triangle's interpolated UVs ((0, 0) where its mesh has
+    // none); on a sphere, longitude and latitude as an equirectangular image maps them (u = 1/2
+    // along +x, turning toward +z; v = 0 at the south pole).
+    Uv uv(const SurfaceInteraction& si) const;
 
     // Closest hit in (ray.tmin, ray.tmax]; `self` is the primitive the ray leaves from.
     bool intersect(const Ray& ray, uint32_t self, Hit& hit) const;
@@ -77,7 +100,10 @@ private:
     // a tree), or kNoPrimitive when prim is not a triangle.
     uint32_t position(uint32_t prim) const;
     // Triangle `prim`'s index among the triangles, or kNoPrimitive when prim is not a triangle.
-    uint32_t triangle_index(uint32_t prim) const;
+    uint32_t triangle_index(uint32_t prim) const {
+        if (prim < spheres_.size() || prim - spheres_.size() >= triangle_count_) return kNoPrimitive;
+        return static_cast<uint32_t>(prim - spheres_.size());
+    }
     // What lanes_of() looks for to leave triangle `prim` out: its position, or with split
     // triangles its index (kNoPrimitive when prim is not a triangle).
     uint32_t leave_out_key(uint32_t prim) const;
@@ -118,6 +144,10 @@ private:
     size_t triangle_count_ = 0;
     bool split_triangles_ = false;  // some triangle lies in several leaves (built with a splitter)
     size_t degenerate_ = 0;
+    TriangleAttributes attributes_;
+    CutOuts cutouts_;
+    // Whether the hit on the triangle at tree position `pos` falls in a hole of its cut-out.
+    bool cut_away(uint32_t pos, const TriangleHit& hit) const;
 };
 
 }  // namespace glint

@@ -144,6 +144,8 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u1, double u2, LightS
         const Triangle& t = geometry_->triangle(light.prim);
         const Vec3 b = sample_uniform_triangle(u1, u2);
         const Vec3 q = t.v0 * b.x + t.v1 * b.y + t.v2 * b.z;
+        out.b1 = b.y;
+        out.b2 = b.z;
         pdf = toward(p, q, normalize(t.unnormalized_normal()), t.area(), out);
     }
     out.pdf = pdf * share;

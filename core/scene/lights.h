@@ -21,6 +21,7 @@ struct LightSample {
     Rgb emission;
     double pdf;       // solid-angle density, including the choice of this light
     uint32_t prim;
+    double b1 = 0, b2 = 0;  // on a triangle light, the point's barycentric weights of v1 and v2
 };
 
 class LightSet {

@@ -23,6 +23,9 @@ struct Material {
     double roughness = 0;
     double metallic = 0;  // metal and plastic: glTF's mix of the conductor over the dielectric
     FresnelModel fresnel = FresnelModel::schlick;
+    // The scene's maps of this material (scene/material_maps.h), or kNoMaps.
+    uint32_t maps = kNoMaps;
+    static constexpr uint32_t kNoMaps = ~0u;
 
     bool is_emissive() const { return !is_black(emission); }
 };

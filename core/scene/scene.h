@@ -2,12 +2,15 @@
 // and how to integrate. Per-job choices (image size, samples, seed) live in RenderSettings.
 #pragma once
 
+#include <memory>
 #include <vector>
 
+#include "scene/bsdf_flags.h"
 #include "scene/camera.h"
 #include "scene/geometry.h"
 #include "scene/lights.h"
 #include "scene/material.h"
+#include "scene/material_maps.h"
 
 namespace glint {
 
@@ -26,12 +29,23 @@ struct IntegratorSettings {
     int direct_view_rays = 8;
 };
 
+// The scene's surfaces: its primitives (spheres first, then triangles, as Geometry numbers them),
+// what each is made of, and the textures its materials look up.
+struct SceneSurfaces {
+    std::vector<Sphere> spheres;
+    std::vector<Triangle> triangles;
+    TriangleAttributes attributes;
+    std::vector<Material> materials;
+    std::vector<uint32_t> material_of_prim;
+    std::vector<MaterialMaps> maps;  // Material::maps indexes these
+    std::vector<std::shared_ptr<const Texture>> textures;  // what the maps look up
+};
+
 // Immutable once built (jobs share it across threads). Not copyable: the lights refer to the
 // geometry.
 class Scene {
 public:
-    Scene(CameraSettings camera, Rgb background, IntegratorSettings integrator, std::vector<Sphere> spheres,
-          std::vector<Triangle> triangles, std::vector<Material> materials, std::vector<uint32_t> material_of_prim);
+    Scene(CameraSettings camera, Rgb background, IntegratorSettings integrator, SceneSurfaces surfaces);
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
 
@@ -40,7 +54,29 @@ public:
     const IntegratorSettings& integrator() const { return integrator_; }
     const Geometry& geometry() const { return geometry_; }
     const LightSet& lights() const { return lights_; }
+    // Primitive prim's material as the scene states it (a textured parameter: its scale).
     const Material& material(uint32_t prim) const { return materials_[material_of_prim_[prim]]; }
+    // Its BSDF's flags, as the strategies choose by them: the same anywhere on the primitive
+    // (MaterialMaps::everywhere), and a Lambertian under vertex normals counted as glossy, as
+    // its lobe is not the cosine about the geometric normal that light paths' connections
+    // assume (render/mis.h).
+    BsdfFlags flags(uint32_t prim) const {
+        BsdfFlags f = flags_[material_of_prim_[prim]];
+        if (has_normals_ && f.is_diffuse() && geometry_.smooth(prim)) f.bits |= BsdfFlags::glossy;
+        return f;
+    }
+    // The material at si: material(si.prim), or with textures, `scratch` filled in with their values.
+    const Material& material_at(const SurfaceInteraction& si, Material& scratch) const {
+        const Material& m = material(si.prim);
+        if (m.maps == Material::kNoMaps || !maps_[m.maps].shades()) return m;
+        scratch = m;
+        maps_[m.maps].apply(scratch, geometry_.uv(si));
+        return scratch;
+    }
+    // The emission of the light point `ls` sampled from p, textured or not.
+    Rgb emission_at(const Vec3& p, const LightSample& ls) const;
+    const std::vector<std::shared_ptr<const Texture>>& textures() const { return textures_; }
+    const std::vector<MaterialMaps>& maps() const { return maps_; }
 
 private:
     CameraSettings camera_;
@@ -49,6 +85,10 @@ private:
     Geometry geometry_;
     std::vector<Material> materials_;
     std::vector<uint32_t> material_of_prim_;
+    std::vector<MaterialMaps> maps_;
+    std::vector<std::shared_ptr<const Texture>> textures_;
+    std::vector<BsdfFlags> flags_;  // per material
+    bool has_normals_ = false;
     LightSet lights_;
 };
 

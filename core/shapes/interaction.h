@@ -9,6 +9,10 @@ struct SurfaceInteraction {
     Vec3 p;        // the hit point as computed
     Vec3 p_error;  // per-axis bound on |p - exact point|
     Vec3 n;        // unit geometric normal: outward for spheres, right-handed winding for triangles
+    // The unit shading normal a mesh's vertex normals give (interpolated), on n's side; n itself
+    // where there are none. scene/shading_normal.h says how the BSDF uses it.
+    Vec3 ns;
+    double b1 = 0, b2 = 0;  // a triangle's barycentric weights of v1 and v2, for its attributes
     uint32_t prim = kNoPrimitive;
 };
 

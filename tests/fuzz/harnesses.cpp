@@ -1,8 +1,10 @@
 #include "harnesses.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "io/obj_loader.h"
 #include "io/partial_file.h"
 #include "io/scene_loader.h"
+#include "io/texture_file.h"
 #include "service/priority.h"
 #include "service/service_config.h"
 
@@ -147,6 +150,27 @@ void job_patch(const uint8_t* data, size_t size) {
         const JobPatch patch = parse_job_patch(text(data, size));
         require(!patch.priority || (*patch.priority >= kMinPriority && *patch.priority <= kMaxPriority));
     } catch (const ServiceError&) {
+    }
+}
+
+// A lower texel limit than the default: the fuzzer's time goes to the decoders' parsing, not to
+// decoding the large images a few bytes can declare (the limit's check is the same code).
+void texture(const uint8_t* data, size_t size) {
+    try {
+        const std::vector<uint8_t> bytes(data, data + size);
+        const DecodedTexture decoded = decode_texture(bytes, "fuzz", {.max_texels_per_file = 1 << 20});
+        const Texture& t = decoded.texture;
+        require(t.width() >= 1 && t.height() >= 1 && t.channels() >= 1 && t.channels() <= 4);
+        const double nan = std::numeric_limits<double>::quiet_NaN();
+        for (const ColorSpace colorspace : {ColorSpace::srgb, ColorSpace::linear})
+            for (int channel = -1; channel < 4; ++channel) {
+                const TextureLookup lookup{.texture = &t, .colorspace = colorspace, .channel = channel};
+                for (const double u : {0.0, 0.37, -2.6, 1e9, nan}) {
+                    const Rgb c = lookup.rgb(u, 1 - u);
+                    require(is_finite(c) && min_component(c) >= 0 && std::isfinite(lookup.value(1 - u, u)));
+                }
+            }
+    } catch (const TextureError&) {
     }
 }
 

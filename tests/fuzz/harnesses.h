@@ -23,5 +23,6 @@ void job_request(const uint8_t* data, size_t size);  // POST /render and /jobs b
 // server runs it (path decoding, parse_query_text), then the token check (check_token).
 void query(const uint8_t* data, size_t size);
 void job_patch(const uint8_t* data, size_t size);  // PATCH /jobs/{id} body -> parse_job_patch
+void texture(const uint8_t* data, size_t size);    // an image file -> decode_texture, then lookups
 
 }  // namespace glint::fuzz

@@ -9,7 +9,7 @@ cd "$(dirname "$0")/../.."
 seconds=${1:-60}
 shift || true
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(scene obj partial job_request query job_patch)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(scene obj partial job_request query job_patch texture)
 build=build-fuzz
 # A request target and a one-field PATCH body are small inputs whose parsers the fuzzer covers
 # quickly: they get half the time (CI's run.sh 60 then takes one minute more for both, not two).

@@ -45,6 +45,7 @@ TEST(FuzzCorpus, PartialInputsEndCleanly) { EXPECT_GT(replay("partial", fuzz::pa
 TEST(FuzzCorpus, JobRequestInputsEndCleanly) { EXPECT_GT(replay("job_request", fuzz::job_request), 0u); }
 TEST(FuzzCorpus, QueryInputsEndCleanly) { EXPECT_GT(replay("query", fuzz::query), 0u); }
 TEST(FuzzCorpus, JobPatchInputsEndCleanly) { EXPECT_GT(replay("job_patch", fuzz::job_patch), 0u); }
+TEST(FuzzCorpus, TextureInputsEndCleanly) { EXPECT_GT(replay("texture", fuzz::texture), 0u); }
 
 // Each input that crashed a harness, fed to the parser it crashed, ends in its clean error.
 template <typename Error, typename Parse>

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "io/scene_loader.h"
+#include "support/image_files.h"
 
 namespace glint {
 namespace {
@@ -18,7 +19,7 @@ constexpr const char* kObj =
     "usemtl paint\nf 1 2 3 4\n"
     "usemtl lamp\nf 1 3 4\n";
 constexpr const char* kMtl =
-    "newmtl paint\nillum 2\nKd 0.5 0.4 0.3\nKs 0.2 0.2 0.2\nmap_Kd wood.png\n"
+    "newmtl paint\nillum 2\nKd 0.5 0.4 0.3\nKs 0.2 0.2 0.2\nmap_Ks wood.png\n"
     "newmtl lamp\nKd 0 0 0\nKe 10 9 8\n"
     "newmtl unused\nillum 7\n";
 
@@ -59,7 +60,7 @@ TEST_F(ObjMaterials, EachUsemtlGroupGetsItsLibraryMaterial) {
     EXPECT_EQ(s.scene->lights().size(), 1u);  // the lamp's one triangle
     // Named, with the JSON path; the unused glass says nothing.
     const std::vector<std::string> warnings = {
-        "objects[0].file: material \"paint\": ignored texture map_Kd wood.png"};
+        "objects[0].file: material \"paint\": ignored texture map_Ks wood.png"};
     EXPECT_EQ(s.warnings, warnings);
 }
 
@@ -95,7 +96,7 @@ TEST_F(ObjMaterials, WithItsOwnMaterialTheLibraryIsNeverOpened) {
 TEST_F(ObjMaterials, BadOverridesNameTheirPath) {
     EXPECT_EQ(error_of(R"(, "materials": {"lamp": {"emision": 5}})"),
               "objects[0].materials.lamp.emision: unknown field (expected one of: type, albedo, ior, roughness, metallic, fresnel, "
-              "emission)");
+              "alpha, alpha_cutoff, emission)");
     EXPECT_EQ(error_of(R"(, "materials": {"lmap": {}})"),
               "objects[0].materials.lmap: the OBJ's material libraries have no material of this name");
     EXPECT_EQ(error_of(R"(, "materials": {"lamp": {"ior": 1.5}})"),
@@ -143,6 +144,58 @@ TEST(PublicScenes, CornellBoxOriginalGetsTheCornellMaterials) {
     EXPECT_EQ(s.scene->material(8).albedo, (Rgb{0.63, 0.065, 0.05}));
     EXPECT_EQ(s.scene->lights().size(), 2u);
     EXPECT_EQ(s.scene->material(34).emission, (Rgb{17, 12, 4}));
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// A quad with UVs whose library names textures as Blender's exporter writes them.
+TEST(ObjTextures, TheLibrarysTexturesAreReadAsBlendersImporterReadsThem) {
+    const testing::ScratchFolder folder("glint-obj-textures");
+    std::filesystem::create_directories(folder.path() / "meshes" / "maps");
+    std::ofstream(folder.path() / "meshes" / "quad.obj") << "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n"
+                                                             "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
+                                                             "usemtl leaf\nf 1/1/1 2/2/1 3/3/1 4/4/1\n";
+    std::ofstream(folder.path() / "meshes" / "quad.mtl") << "newmtl leaf\nKd 0.2 0.2 0.2\nKs 0.5 0.5 0.5\n"
+                                                             "map_Kd -s 2 2 1 maps/colours.png\nmap_Pr maps/rough.png\n"
+                                                             "map_d maps/mask.png\nmap_Ks maps/rough.png\n";
+    // colours: black left, white right; rough: one grey texel; mask: grey, opaque at the bottom.
+    folder.write("meshes/maps/colours.png", testing::png(2, 1, 1, {0, 255}));
+    folder.write("meshes/maps/rough.png", testing::png(1, 1, 1, {51}));
+    folder.write("meshes/maps/mask.png", testing::png(1, 2, 1, {0, 255}));
+    const LoadedScene s = parse_scene(R"({"objects": [{"type": "mesh", "file": "meshes/quad.obj"}]})", folder.path());
+    const std::vector<std::string> warnings = {"objects[0].file: material \"leaf\": ignored texture map_Ks maps/rough.png"};
+    EXPECT_EQ(s.warnings, warnings);
+    const Geometry& g = s.scene->geometry();
+    const auto material_at = [&](double x, double y) {
+        const Ray ray{{x, y, 2}, {0, 0, -1}};
+        Hit hit;
+        EXPECT_TRUE(g.intersect(ray, kNoPrimitive, hit)) << x << ", " << y;
+        Material scratch;
+        return s.scene->material_at(g.interaction(ray, hit), scratch);
+    };
+    // -s 2: u = 0.125 reads the texture at 0.25 (black), u = 0.375 at 0.75 (white).
+    const Material black = material_at(-0.75, -0.9), white = material_at(-0.25, -0.9);
+    EXPECT_EQ(black.type, MaterialType::plastic);
+    EXPECT_EQ(black.albedo, Rgb{0});
+    EXPECT_NEAR(white.albedo.y, 1, 1e-12);
+    EXPECT_NEAR(black.roughness, 0.2, 1e-12);
+    // map_d's grey (the image has no alpha): the top half is a hole.
+    EXPECT_FALSE(g.occluded(Ray{{0, 0.9, 2}, {0, 0, -1}}, kNoPrimitive));
+    EXPECT_TRUE(g.occluded(Ray{{0, -0.9, 2}, {0, 0, -1}}, kNoPrimitive));
+    EXPECT_TRUE(g.smooth(g.triangle_id(0)));
+}
+
+TEST(ObjTextures, ALibrarysTexturesStayInsideTheScenesFolder) {
+    const testing::ScratchFolder folder("glint-obj-texture-escape");
+    std::ofstream(folder.path() / "quad.obj") << "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl a\nf 1 2 3\n";
+    std::ofstream(folder.path() / "quad.mtl") << "newmtl a\nKd 1 1 1\nmap_Kd ../../etc/passwd\n";
+    const std::string error = scene_error(R"({"objects": [{"type": "mesh", "file": "quad.obj"}]})", folder.path());
+    EXPECT_NE(error.find("objects[0].file: material \"a\": texture ../../etc/passwd: must stay inside the scene's folder"),
+              std::string::npos) << error;
 }
 
 }  // namespace
