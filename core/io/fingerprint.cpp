@@ -27,8 +27,10 @@ void surface_maps(Fnv1a& h, const Scene& scene) {
         h.bytes(t->floats().data(), t->floats().size_bytes());
     }
     for (const MaterialMaps& m : scene.maps()) {
-        for (const TextureLookup* t : {&m.albedo, &m.roughness, &m.metallic, &m.emission, &m.alpha.alpha}) lookup(h, scene, *t);
+        for (const TextureLookup* t : {&m.albedo, &m.roughness, &m.metallic, &m.emission, &m.alpha.alpha, &m.normal})
+            lookup(h, scene, *t);
         h.value(m.alpha.cutoff);
+        h.value(m.normal_strength);
     }
 }
 

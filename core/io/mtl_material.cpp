@@ -91,6 +91,12 @@ void map_textures(const tinyobj::material_t& mtl, ObjMaterial& out) {
     if (!mtl.metallic_texname.empty() && has_metallic(type)) t.metallic = texture(mtl.metallic_texname, mtl.metallic_texopt);
     if (!mtl.alpha_texname.empty()) t.alpha = texture(mtl.alpha_texname, mtl.alpha_texopt);
     if (!mtl.emissive_texname.empty()) t.emission = texture(mtl.emissive_texname, mtl.emissive_texopt);
+    const bool norm = !mtl.normal_texname.empty();
+    if (norm || !mtl.bump_texname.empty()) {
+        const tinyobj::texture_option_t& options = norm ? mtl.normal_texopt : mtl.bump_texopt;
+        t.normal = texture(norm ? mtl.normal_texname : mtl.bump_texname, options);
+        t.normal_strength = std::clamp(widen(options.bump_multiplier), 0.0, 100.0);
+    }
     const bool roughness_from_ns = !t.roughness.file.empty() && mtl.roughness_texname.empty();
     const std::tuple<const std::string&, const char*, bool> maps[] = {
         {mtl.diffuse_texname, "map_Kd", !t.albedo.file.empty()},
@@ -98,8 +104,8 @@ void map_textures(const tinyobj::material_t& mtl, ObjMaterial& out) {
         {mtl.specular_highlight_texname, "map_Ns", roughness_from_ns},
         {mtl.roughness_texname, "map_Pr", !t.roughness.file.empty() && !roughness_from_ns},
         {mtl.metallic_texname, "map_Pm", !t.metallic.file.empty()},
-        {mtl.bump_texname, "bump", false},
-        {mtl.normal_texname, "norm", false},
+        {mtl.bump_texname, "bump", !t.normal.file.empty() && !norm},
+        {mtl.normal_texname, "norm", norm},
         {mtl.displacement_texname, "disp", false},
         {mtl.reflection_texname, "refl", false}};
     for (const auto& [name, key, read] : maps)

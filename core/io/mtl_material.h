@@ -35,6 +35,8 @@ struct MtlTextures {
     MtlTexture metallic;   // map_Pm
     MtlTexture alpha;      // map_d: a cut-out
     MtlTexture emission;   // map_Ke, in place of Ke
+    MtlTexture normal;     // norm, or else map_Bump / bump: a tangent-space normal map
+    double normal_strength = 1;  // its -bm
 };
 
 struct ObjMaterial {

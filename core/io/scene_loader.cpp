@@ -4,6 +4,7 @@
 
 #include <initializer_list>
 #include <map>
+#include <utility>
 
 #include "base/files.h"
 #include "io/json_text.h"
@@ -241,8 +242,9 @@ private:
     // fields not given with it; each field must be one the type has. A colour or number may be
     // a texture ({"texture": file, ...}), which gives the material maps of its own.
     Material material_fields(const At& at, Material m, bool with_emission) {
-        if (with_emission) at.expect_object({"type", "albedo", "ior", "roughness", "metallic", "fresnel", "alpha", "alpha_cutoff", "emission"});
-        else at.expect_object({"type", "albedo", "ior", "roughness", "metallic", "fresnel", "alpha", "alpha_cutoff"});
+        if (with_emission)
+            at.expect_object({"type", "albedo", "ior", "roughness", "metallic", "fresnel", "alpha", "alpha_cutoff", "normal_map", "emission"});
+        else at.expect_object({"type", "albedo", "ior", "roughness", "metallic", "fresnel", "alpha", "alpha_cutoff", "normal_map"});
         if (at.has("type")) {
             const MaterialType type = material_type(at["type"]);
             if (type != m.type) m = with_type(m, type);
@@ -261,6 +263,10 @@ private:
         }
         if (with_emission && at.has("emission")) m.emission = colour_or_texture(at["emission"], kMaxEmission, maps.emission);
         if (at.has("alpha")) maps.alpha.alpha = texture_lookup(at["alpha"], Usage::alpha);
+        if (at.has("normal_map")) {
+            maps.normal = texture_lookup(at["normal_map"], Usage::normal);
+            maps.normal_strength = std::exchange(maps.normal.scale, Rgb{1}).x;
+        }
         if (at.has("alpha_cutoff")) {
             if (!maps.alpha.present()) at["alpha_cutoff"].fail("applies to an \"alpha\" texture, which the material has not");
             maps.alpha.cutoff = at["alpha_cutoff"].number_in(0, 1);
@@ -270,7 +276,7 @@ private:
 
     // m with `maps` as its own (a new entry: another material may share m's old one).
     Material with_maps(Material m, const MaterialMaps& maps) {
-        const bool any = maps.shades() || maps.alpha.present();
+        const bool any = maps.shades() || maps.alpha.present() || maps.has(maps.normal);
         if (!any) {
             m.maps = Material::kNoMaps;
         } else if (m.maps == Material::kNoMaps || !same_maps(surfaces_.maps[m.maps], maps)) {
@@ -285,9 +291,12 @@ private:
         Material out = default_material(type);
         out.emission = m.emission;
         if (m.maps == Material::kNoMaps) return out;
+        const MaterialMaps& old = surfaces_.maps[m.maps];
         MaterialMaps kept;
-        kept.emission = surfaces_.maps[m.maps].emission;
-        kept.alpha = surfaces_.maps[m.maps].alpha;
+        kept.emission = old.emission;
+        kept.alpha = old.alpha;
+        kept.normal = old.normal;
+        kept.normal_strength = old.normal_strength;
         return with_maps(out, kept);
     }
 
@@ -299,12 +308,13 @@ private:
     static bool same_maps(const MaterialMaps& a, const MaterialMaps& b) {
         return same_lookup(a.albedo, b.albedo) && same_lookup(a.roughness, b.roughness) &&
                same_lookup(a.metallic, b.metallic) && same_lookup(a.emission, b.emission) &&
-               same_lookup(a.alpha.alpha, b.alpha.alpha) && a.alpha.cutoff == b.alpha.cutoff;
+               same_lookup(a.alpha.alpha, b.alpha.alpha) && a.alpha.cutoff == b.alpha.cutoff &&
+               same_lookup(a.normal, b.normal) && a.normal_strength == b.normal_strength;
     }
 
     // What a texture gives: a colour (sRGB-decoded by default), an emission (likewise), a
     // number (roughness, metallic: linear) or a cut-out's alpha (channel a by default).
-    enum class Usage { colour, emission, number, alpha };
+    enum class Usage { colour, emission, number, alpha, normal };
 
     // A colour in [0, max], or a texture (its lookup in `map`, its scale returned).
     Rgb colour_or_texture(const At& at, double max, TextureLookup& map) {
@@ -346,6 +356,7 @@ private:
             const At scale = at["scale"];
             if (usage == Usage::colour) t.scale = scale.colour(1);
             else if (usage == Usage::emission) t.scale = scale.colour(kMaxEmission);
+            else if (usage == Usage::normal) t.scale = Rgb{scale.number_in(0, 100)};
             else t.scale = Rgb{scale.number_in(0, 1)};
         }
         return t;
@@ -517,6 +528,8 @@ private:
         lookup(t.metallic, ColorSpace::linear, maps.metallic);
         lookup(t.emission, ColorSpace::srgb, maps.emission);
         lookup(t.alpha, ColorSpace::linear, maps.alpha.alpha);
+        lookup(t.normal, ColorSpace::linear, maps.normal);
+        maps.normal_strength = t.normal_strength;
         // A mask's alpha channel, or the grey of an image without one.
         if (maps.alpha.present()) maps.alpha.alpha.channel = maps.alpha.alpha.texture->channels() % 2 == 0 ? 3 : 0;
         Material out = m.material;

@@ -47,7 +47,8 @@ Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const 
     LightSample ls;
     const Vec3 facing = dot(d, si.n) < 0 ? si.n : -si.n;
     if (!scene_.lights().sample(si.p, si.prim, u1, u2, ls, facing)) return Rgb{0};
-    if (scene_.material(ls.prim).maps != Material::kNoMaps) ls.emission = scene_.emission_at(si.p, ls);
+    if (scene_.has_textured_lights() && scene_.material(ls.prim).maps != Material::kNoMaps)
+        ls.emission = scene_.emission_at(si.p, ls);
     const BsdfValue f = bsdf.evaluate(-d, ls.wi);
     Rgb value = beta * f.f_cos * ls.emission * (power_heuristic(ls.pdf, f.pdf) / ls.pdf);
     if (!survives_roulette(value, kShadowRoulette, rng)) return Rgb{0};
@@ -94,7 +95,7 @@ Rgb PathTracer::through_caster(const SurfaceInteraction& x, const Vec3& d, const
     for (int bounces = 0;; ++bounces) {  // specular vertices behind the ray
         Hit hit;
         if (!scene_.geometry().intersect(ray, self, hit)) break;
-        const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
+        const SurfaceInteraction si = scene_.interaction(ray, hit);
         Material scratch;
         const Material& hm = scene_.material_at(si, scratch);
         if (bounces > 0) result += throughput * hm.emission;  // at 0 it is light sampling's
@@ -239,7 +240,7 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov
             if (scene_.material(hit.prim).is_emissive()) result += path.throughput * emission_at(ray, hit);
             break;
         }
-        const SurfaceInteraction si = scene_.geometry().interaction(ray, hit);
+        const SurfaceInteraction si = scene_.interaction(ray, hit);
         const Material& m = scene_.material_at(si, scratch);
         const Bsdf bsdf(m, si, -ray.d);
         if (aov) aov = note_aov(aov, path, hit.t, si, bsdf, specular);

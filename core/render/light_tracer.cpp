@@ -45,7 +45,7 @@ bool LightTracer::to_diffuse(Ray ray, uint32_t self, uint32_t light, Rgb& throug
         if (!diffuse && !flags.is_specular()) return false;
         if (first && (diffuse || (light != kNoPrimitive && !strategies_.caustic_emitter().is_target(light, hit.prim))))
             return false;
-        si = scene_.geometry().interaction(ray, hit);
+        si = scene_.interaction(ray, hit);
         d_in = ray.d;
         if (diffuse) return true;
         // Specular BSDFs carry no η², and their Fresnel terms are the same from either side

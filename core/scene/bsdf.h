@@ -21,7 +21,7 @@ public:
     // At si, seen from wo: where si has a shading normal, the lobes are about it, bent for wo and
     // held to the geometric surface's sides (shading_normal.h).
     Bsdf(const Material& m, const SurfaceInteraction& si, const Vec3& wo)
-        : m_(m), n_(si.ns == si.n ? si.n : shading_normal(si.n, si.ns, wo)), ng_(si.n), shaded_(!(si.ns == si.n)) {}
+        : m_(m), n_(si.shaded ? shading_normal(si.n, si.ns, wo) : si.n), ng_(si.n), shaded_(si.shaded) {}
     Bsdf(Material&&, const SurfaceInteraction&, const Vec3&) = delete;
 
     // The flags of m's BSDF anywhere on its surface.
@@ -41,22 +41,14 @@ public:
     // non-specular direction takes instead of rng's (a stratified pair). What each material
     // draws, and in which order, is in its file; a weight of 0 is a failed sample.
     BsdfSample sample(const Vec3& wo, Rng& rng, const double* given = nullptr) const {
-        BsdfSample bs = sample_lobes(wo, rng, given);
-        if (shaded_ && !sides_agree(ng_, n_, wo, bs.wi)) bs.weight = Rgb{0};
-        return bs;
+        if (shaded_) return sample_shaded(wo, rng, given);
+        return sample_lobes(wo, rng, given);
     }
 
     // f(wo, wi)·|cos θi| over the non-specular lobes, and the pdf with which sample() picks wi.
     BsdfValue evaluate(const Vec3& wo, const Vec3& wi) const {
-        if (shaded_ && !sides_agree(ng_, n_, wo, wi)) return {};
-        switch (m_.type) {
-            case MaterialType::diffuse: return evaluate_lambertian(m_, n_, wo, wi);
-            case MaterialType::mirror: return evaluate_mirror(m_, n_, wo, wi);
-            case MaterialType::glass: return evaluate_glass(m_, n_, wo, wi);
-            case MaterialType::metal:
-            case MaterialType::plastic: return evaluate_metallic_roughness(m_, n_, wo, wi);
-        }
-        return {};
+        if (shaded_) return evaluate_shaded(wo, wi);
+        return evaluate_lobes(wo, wi);
     }
     Rgb eval(const Vec3& wo, const Vec3& wi) const { return evaluate(wo, wi).f_cos; }
     double pdf(const Vec3& wo, const Vec3& wi) const { return evaluate(wo, wi).pdf; }
@@ -76,6 +68,25 @@ public:
     const Rgb& albedo() const { return m_.albedo; }
 
 private:
+    // Under a shading normal: the lobes' answer where the geometric normal agrees (shading_normal.h).
+    [[gnu::noinline]] BsdfSample sample_shaded(const Vec3& wo, Rng& rng, const double* given) const {
+        BsdfSample bs = sample_lobes(wo, rng, given);
+        if (!sides_agree(ng_, n_, wo, bs.wi)) bs.weight = Rgb{0};
+        return bs;
+    }
+    [[gnu::noinline]] BsdfValue evaluate_shaded(const Vec3& wo, const Vec3& wi) const {
+        return sides_agree(ng_, n_, wo, wi) ? evaluate_lobes(wo, wi) : BsdfValue{};
+    }
+    BsdfValue evaluate_lobes(const Vec3& wo, const Vec3& wi) const {
+        switch (m_.type) {
+            case MaterialType::diffuse: return evaluate_lambertian(m_, n_, wo, wi);
+            case MaterialType::mirror: return evaluate_mirror(m_, n_, wo, wi);
+            case MaterialType::glass: return evaluate_glass(m_, n_, wo, wi);
+            case MaterialType::metal:
+            case MaterialType::plastic: return evaluate_metallic_roughness(m_, n_, wo, wi);
+        }
+        return {};
+    }
     BsdfSample sample_lobes(const Vec3& wo, Rng& rng, const double* given) const {
         switch (m_.type) {
             case MaterialType::diffuse: {

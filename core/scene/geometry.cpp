@@ -111,17 +111,14 @@ inline unsigned Geometry::lanes_of(uint32_t key, uint32_t first) const {
 template <bool kAvx512>
 inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
     const uint32_t skip = leave_out_key(self);
+    const bool cutouts = has_cutouts();
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto test_run = [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
-        const float* run = &triangle_runs_[9 * size_t(first)];
-        unsigned left_out = lanes_of(skip, first);
-        int i = run_test.closest(run, count, left_out, r, hit.triangle);
-        while (i >= 0 && has_cutouts() && cut_away(first + uint32_t(i), hit.triangle)) {
-            left_out |= 1u << i;
-            i = run_test.closest(run, count, left_out, r, hit.triangle);
-        }
+        const unsigned left_out = lanes_of(skip, first);
+        int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, left_out, r, hit.triangle);
         if (i < 0) return false;
+        if (cutouts && (i = past_cutouts(run_test, first, count, left_out, r, i, hit.triangle)) < 0) return false;
         const uint32_t pos = first + static_cast<uint32_t>(i);
         hit.t = r.tmax = hit.triangle.t;
         hit.prim = triangle_id(triangle_at_.empty() ? pos : triangle_at_[pos]);
@@ -150,6 +147,17 @@ bool Geometry::triangle_blocks_avx2(const Ray& ray, uint32_t self, uint32_t targ
 }
 bool Geometry::triangle_blocks_avx512(const Ray& ray, uint32_t self, uint32_t target) const {
     return triangle_blocks(ray, self, target);
+}
+
+int Geometry::past_cutouts(const RunTest& test, uint32_t first, uint32_t count, unsigned left_out, const Ray& ray, int i,
+                           TriangleHit& hit) const {
+    const float* run = &triangle_runs_[9 * size_t(first)];
+    if (i == kUntested) i = test.closest(run, count, left_out, ray, hit);
+    while (i >= 0 && cut_away(first + uint32_t(i), hit)) {
+        left_out |= 1u << i;
+        i = test.closest(run, count, left_out, ray, hit);
+    }
+    return i;
 }
 
 bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
@@ -187,16 +195,14 @@ bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
 
 inline bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
     const uint32_t skip = leave_out_key(self), wanted = leave_out_key(target);
+    const bool cutouts = has_cutouts();
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) __attribute__((always_inline)) {
-        const float* run = &triangle_runs_[9 * size_t(first)];
-        unsigned left_out = lanes_of(skip, first) | lanes_of(wanted, first);
-        if (!has_cutouts()) return run_test.any(run, count, left_out, r);
-        TriangleHit h;
-        for (int i; (i = run_test.closest(run, count, left_out, r, h)) >= 0; left_out |= 1u << i)
-            if (!cut_away(first + uint32_t(i), h)) return true;
-        return false;
+        const unsigned left_out = lanes_of(skip, first) | lanes_of(wanted, first);
+        if (!run_test.any(&triangle_runs_[9 * size_t(first)], count, left_out, r)) return false;
+        TriangleHit h;  // with cut-outs, a hit that some hole may take back
+        return !cutouts || past_cutouts(run_test, first, count, left_out, r, kUntested, h) >= 0;
     };
     if (accelerator_ == Accelerator::bvh) return triangle_bvh_.any(ray, blocks);
     for (uint32_t pos = 0; pos < triangle_count_; ++pos)
@@ -226,18 +232,22 @@ bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
 SurfaceInteraction Geometry::interaction(const Ray& ray, const Hit& hit) const {
     if (is_sphere(hit.prim)) return spheres_[hit.prim].interaction(ray, hit.t, hit.prim);
     SurfaceInteraction si = triangle(hit.prim).interaction(hit.triangle, hit.prim);
-    if (smooth(hit.prim)) {
+    if (!attributes_.normals.empty() && smooth(hit.prim)) {
         const Vec3 ns = attributes_.normals[triangle_index(hit.prim)].at(si.b1, si.b2);
         const double length2 = dot(ns, ns);
         // Corner normals that cancel, or overflow, leave the geometric normal.
-        if (length2 > 0 && std::isfinite(length2)) si.ns = dot(ns, si.n) < 0 ? -ns / std::sqrt(length2) : ns / std::sqrt(length2);
+        if (length2 > 0 && std::isfinite(length2)) {
+            si.ns = dot(ns, si.n) < 0 ? -ns / std::sqrt(length2) : ns / std::sqrt(length2);
+            si.shaded = true;
+        }
     }
     return si;
 }
 
 void Geometry::attach(TriangleAttributes attributes, CutOuts cutouts) {
     const auto fits = [&](size_t n) { return n == 0 || n == triangle_count_; };
-    if (!fits(attributes.uvs.size()) || !fits(attributes.normals.size()) || !fits(cutouts.mask_of_triangle.size()))
+    if (!fits(attributes.uvs.size()) || !fits(attributes.normals.size()) || !fits(attributes.tangents.size()) ||
+        !fits(cutouts.mask_of_triangle.size()))
         throw std::invalid_argument("triangle attributes: one per triangle or none");
     attributes_ = std::move(attributes);
     cutouts_ = std::move(cutouts);
@@ -250,6 +260,13 @@ bool Geometry::cut_away(uint32_t pos, const TriangleHit& hit) const {
     if (mask == CutOuts::kNoMask) return false;
     const Uv uv = attributes_.uvs.empty() ? Uv{} : attributes_.uvs[index].at(hit.b1, hit.b2);
     return !cutouts_.masks[mask].keeps(uv);
+}
+
+bool Geometry::tangent(const SurfaceInteraction& si, Vec3& t, double& sign) const {
+    const uint32_t index = triangle_index(si.prim);
+    if (index == kNoPrimitive || attributes_.tangents.empty() || !attributes_.tangents[index].present()) return false;
+    t = attributes_.tangents[index].at(si.b1, si.b2, sign);
+    return true;
 }
 
 Uv Geometry::uv(const SurfaceInteraction& si) const {

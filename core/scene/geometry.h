@@ -81,13 +81,17 @@ public:
     const TriangleAttributes& attributes() const { return attributes_; }
     // Whether primitive `prim` is shaded by vertex normals.
     bool smooth(uint32_t prim) const {
+        if (attributes_.normals.empty()) return false;
         const uint32_t index = triangle_index(prim);
-        return index != kNoPrimitive && !attributes_.normals.empty() && attributes_.normals[index].present();
+        return index != kNoPrimitive && attributes_.normals[index].present();
     }
     // The texture coordinates at si: a triangle's interpolated UVs ((0, 0) where its mesh has
     // none); on a sphere, longitude and latitude as an equirectangular image maps them (u = 1/2
     // along +x, turning toward +z; v = 0 at the south pole).
     Uv uv(const SurfaceInteraction& si) const;
+    // The tangent at si for a normal map (not normalised) and its bitangent's sign, or false
+    // where the triangle has none (a sphere, or no UVs).
+    bool tangent(const SurfaceInteraction& si, Vec3& t, double& sign) const;
 
     // Closest hit in (ray.tmin, ray.tmax]; `self` is the primitive the ray leaves from.
     bool intersect(const Ray& ray, uint32_t self, Hit& hit) const;
@@ -148,6 +152,12 @@ private:
     CutOuts cutouts_;
     // Whether the hit on the triangle at tree position `pos` falls in a hole of its cut-out.
     bool cut_away(uint32_t pos, const TriangleHit& hit) const;
+    // The run's nearest hit outside `left_out` and outside the cut-outs' holes, from the run
+    // test's first answer `i` (its lane, -1, or kUntested), as RunTest::closest answers. Out of
+    // line and cold, so that the traversal of a scene without cut-outs is the code it was.
+    static constexpr int kUntested = -2;
+    [[gnu::noinline, gnu::cold]] int past_cutouts(const RunTest& test, uint32_t first, uint32_t count, unsigned left_out,
+                                                 const Ray& ray, int i, TriangleHit& hit) const;
 };
 
 }  // namespace glint

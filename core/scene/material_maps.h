@@ -16,6 +16,9 @@ struct MaterialMaps {
     // Each replaces the material's own value where its texture is set.
     TextureLookup albedo, roughness, metallic, emission;
     AlphaMask alpha;
+    // A tangent-space normal map (linear; x and y multiplied by normal_strength, glTF's scale).
+    TextureLookup normal;
+    double normal_strength = 1;
 
     bool has(const TextureLookup& map) const { return map.texture != nullptr; }
     // Whether any of the material's parameters come from a texture.

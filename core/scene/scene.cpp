@@ -1,6 +1,7 @@
 #include "scene/scene.h"
 
 #include "scene/bsdf.h"
+#include "shapes/tangent_frames.h"
 
 namespace glint {
 namespace {
@@ -30,6 +31,17 @@ CutOuts cutouts(const Geometry& geometry, const std::vector<Material>& materials
     return out;
 }
 
+bool has_normal_map(const Material& m, const std::vector<MaterialMaps>& maps) {
+    return m.maps != Material::kNoMaps && maps[m.maps].has(maps[m.maps].normal);
+}
+
+// The triangles' tangent frames, where some material has a normal map and the meshes UVs.
+void add_tangents(const Geometry& geometry, TriangleAttributes& attributes) {
+    std::vector<Triangle> triangles;
+    for (size_t t = 0; t < geometry.triangle_count(); ++t) triangles.push_back(geometry.triangle(geometry.triangle_id(t)));
+    attributes.tangents = tangent_frames(triangles, attributes.uvs, attributes.normals);
+}
+
 }  // namespace
 
 Scene::Scene(CameraSettings camera, Rgb background, IntegratorSettings integrator, SceneSurfaces surfaces)
@@ -43,8 +55,34 @@ Scene::Scene(CameraSettings camera, Rgb background, IntegratorSettings integrato
       textures_(std::move(surfaces.textures)),
       has_normals_(!surfaces.attributes.normals.empty()),
       lights_(geometry_, everywhere(materials_, maps_), material_of_prim_) {
+    for (const Material& m : materials_) {
+        has_normal_maps_ |= has_normal_map(m, maps_);
+        has_textured_lights_ |= m.maps != Material::kNoMaps && (m.is_emissive() || maps_[m.maps].has(maps_[m.maps].emission));
+    }
+    if (has_normal_maps_ && !surfaces.attributes.uvs.empty()) add_tangents(geometry_, surfaces.attributes);
     geometry_.attach(std::move(surfaces.attributes), cutouts(geometry_, materials_, material_of_prim_, maps_));
-    for (const Material& m : everywhere(materials_, maps_)) flags_.push_back(Bsdf::flags(m));
+    for (const Material& m : everywhere(materials_, maps_)) {
+        BsdfFlags f = Bsdf::flags(m);
+        if (f.is_diffuse() && has_normal_map(m, maps_)) f.bits |= BsdfFlags::glossy;
+        flags_.push_back(f);
+    }
+}
+
+void Scene::map_normal(SurfaceInteraction& si) const {
+    const Material& m = material(si.prim);
+    Vec3 tangent;
+    double sign;
+    if (!has_normal_map(m, maps_) || !geometry_.tangent(si, tangent, sign)) return;
+    const MaterialMaps& maps = maps_[m.maps];
+    const Uv uv = geometry_.uv(si);
+    const Rgb c = maps.normal.rgb(uv.u, uv.v);
+    const Vec3 n = si.ns, t = tangent - n * dot(n, tangent);
+    const Vec3 mapped = t * ((2 * c.x - 1) * maps.normal_strength / length(t)) +
+                        cross(n, t) * ((2 * c.y - 1) * maps.normal_strength * sign / length(t)) + n * (2 * c.z - 1);
+    const double l = length(mapped);
+    if (!(l > 0) || !std::isfinite(l)) return;
+    si.ns = dot(mapped, si.n) < 0 ? -mapped / l : mapped / l;
+    si.shaded = true;
 }
 
 Rgb Scene::emission_at(const Vec3& p, const LightSample& ls) const {

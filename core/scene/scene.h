@@ -57,9 +57,9 @@ public:
     // Primitive prim's material as the scene states it (a textured parameter: its scale).
     const Material& material(uint32_t prim) const { return materials_[material_of_prim_[prim]]; }
     // Its BSDF's flags, as the strategies choose by them: the same anywhere on the primitive
-    // (MaterialMaps::everywhere), and a Lambertian under vertex normals counted as glossy, as
-    // its lobe is not the cosine about the geometric normal that light paths' connections
-    // assume (render/mis.h).
+    // (MaterialMaps::everywhere), and a Lambertian under vertex normals or a normal map counted
+    // as glossy, as its lobe is not the cosine about the geometric normal that light paths'
+    // connections assume (render/mis.h).
     BsdfFlags flags(uint32_t prim) const {
         BsdfFlags f = flags_[material_of_prim_[prim]];
         if (has_normals_ && f.is_diffuse() && geometry_.smooth(prim)) f.bits |= BsdfFlags::glossy;
@@ -73,6 +73,15 @@ public:
         maps_[m.maps].apply(scratch, geometry_.uv(si));
         return scratch;
     }
+    // The surface point `hit` along `ray`, its shading normal from its material's normal map if
+    // it has one: what the integrator shades.
+    SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const {
+        SurfaceInteraction si = geometry_.interaction(ray, hit);
+        if (has_normal_maps_) map_normal(si);
+        return si;
+    }
+    // Whether some emitter has maps (emission_at() then differs from the light's emission).
+    bool has_textured_lights() const { return has_textured_lights_; }
     // The emission of the light point `ls` sampled from p, textured or not.
     Rgb emission_at(const Vec3& p, const LightSample& ls) const;
     const std::vector<std::shared_ptr<const Texture>>& textures() const { return textures_; }
@@ -89,6 +98,9 @@ private:
     std::vector<std::shared_ptr<const Texture>> textures_;
     std::vector<BsdfFlags> flags_;  // per material
     bool has_normals_ = false;
+    bool has_normal_maps_ = false;
+    bool has_textured_lights_ = false;
+    void map_normal(SurfaceInteraction& si) const;
     LightSet lights_;
 };
 

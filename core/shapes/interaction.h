@@ -12,6 +12,7 @@ struct SurfaceInteraction {
     // The unit shading normal a mesh's vertex normals give (interpolated), on n's side; n itself
     // where there are none. scene/shading_normal.h says how the BSDF uses it.
     Vec3 ns;
+    bool shaded = false;  // ns differs from n
     double b1 = 0, b2 = 0;  // a triangle's barycentric weights of v1 and v2, for its attributes
     uint32_t prim = kNoPrimitive;
 };

@@ -37,10 +37,27 @@ struct TriangleNormals {
     }
 };
 
+// A corner's tangent for normal maps (shapes/tangent_frames.h builds them): its direction and
+// the sign of the bitangent, cross(n, t)·sign.
+struct TriangleTangents {
+    float t[3][4] = {};  // xyz, sign; all zero: the triangle has none (degenerate UVs)
+
+    bool present() const { return t[0][3] != 0; }
+    // The interpolated tangent (not normalised); `sign` that of corner 0 (a triangle's corners
+    // share their handedness).
+    Vec3 at(double b1, double b2, double& sign) const {
+        const double b0 = 1 - b1 - b2;
+        sign = t[0][3];
+        return Vec3{t[0][0], t[0][1], t[0][2]} * b0 + Vec3{t[1][0], t[1][1], t[1][2]} * b1 +
+               Vec3{t[2][0], t[2][1], t[2][2]} * b2;
+    }
+};
+
 // One entry per triangle, in the scene's triangle order, or none.
 struct TriangleAttributes {
     std::vector<TriangleUvs> uvs;
     std::vector<TriangleNormals> normals;
+    std::vector<TriangleTangents> tangents;  // where some material has a normal map
 };
 
 }  // namespace glint

@@ -64,10 +64,10 @@ TEST(MtlMaterial, TfAloneDoesNotMakeGlass) {
 TEST(MtlMaterial, WhatGlintDoesNotModelIsNamed) {
     const ObjMaterial m = mapped("illum 2\nKd 1.5 0.5 0.5\nKs 0.3 0.3 0.3\nNs 50\nmap_Kd bricks.png\nbump bricks_bump.png\nPs 0.4\n");
     EXPECT_EQ(m.material.albedo, (Rgb{1, 0.5, 0.5}));
-    const std::vector<std::string> expected = {"Kd above 1 (clamped to 1)", "sheen and clearcoat (Ps, Pc)",
-                                               "texture bump bricks_bump.png"};
+    const std::vector<std::string> expected = {"Kd above 1 (clamped to 1)", "sheen and clearcoat (Ps, Pc)"};
     EXPECT_EQ(m.ignored, expected);
     EXPECT_EQ(m.textures.albedo.file, "bricks.png");  // read: not named
+    EXPECT_EQ(m.textures.normal.file, "bricks_bump.png");  // a normal map, as Blender's importer reads bump
     EXPECT_EQ(mapped("Kd 0.5 0.5 0.5\nPs 0.4\nPc 0.2\n").ignored, std::vector<std::string>{"sheen and clearcoat (Ps, Pc)"});
 }
 

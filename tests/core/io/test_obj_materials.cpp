@@ -96,7 +96,7 @@ TEST_F(ObjMaterials, WithItsOwnMaterialTheLibraryIsNeverOpened) {
 TEST_F(ObjMaterials, BadOverridesNameTheirPath) {
     EXPECT_EQ(error_of(R"(, "materials": {"lamp": {"emision": 5}})"),
               "objects[0].materials.lamp.emision: unknown field (expected one of: type, albedo, ior, roughness, metallic, fresnel, "
-              "alpha, alpha_cutoff, emission)");
+              "alpha, alpha_cutoff, normal_map, emission)");
     EXPECT_EQ(error_of(R"(, "materials": {"lmap": {}})"),
               "objects[0].materials.lmap: the OBJ's material libraries have no material of this name");
     EXPECT_EQ(error_of(R"(, "materials": {"lamp": {"ior": 1.5}})"),

@@ -3,6 +3,8 @@
 // weights, wrap, sRGB), and a texture renders the same from PNG and from EXR.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "io/scene_loader.h"
 #include "support/image_files.h"
 #include "support/test_support.h"
@@ -231,6 +233,36 @@ TEST_F(CutOuts, ShadowsHaveTheirShape) {
         }
     EXPECT_GT(right, 0.5);
     EXPECT_LT(left, 0.1 * right) << left << " " << right;
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// A normal map of one texel leaning 45° toward the tangent (+u), on quads whose u runs along +x
+// and, mirrored, along -x: the shading normal leans toward +x and -x.
+TEST_F(SceneTextures, ANormalMapLeansTheShadingNormalAlongTheTangentFrame) {
+    folder_.write("lean.png", testing::png(1, 1, 3, {218, 128, 218}));
+    folder_.write("flat.png", testing::png(1, 1, 3, {128, 128, 255}));
+    const auto shading_normal = [&](const std::string& uvs, const std::string& map) {
+        const LoadedScene s = load(R"({"objects": [{"type": "mesh", "vertices": [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]],
+            "uvs": )" + uvs + R"(, "indices": [[0, 1, 2], [0, 2, 3]], "material": {"normal_map": {"texture": ")" + map + R"("}}}]})");
+        const Ray ray{{0.3, 0.2, 3}, {0, 0, -1}};
+        Hit hit;
+        EXPECT_TRUE(s.scene->geometry().intersect(ray, kNoPrimitive, hit));
+        EXPECT_FALSE(s.scene->flags(hit.prim).is_diffuse());  // a normal-mapped Lambertian is glossy
+        return s.scene->interaction(ray, hit).ns;
+    };
+    const std::string forward = "[[0, 0], [1, 0], [1, 1], [0, 1]]", mirrored = "[[1, 0], [0, 0], [0, 1], [1, 1]]";
+    const double c = (2 * 218 / 255.0 - 1) / std::hypot(2 * 218 / 255.0 - 1, 2 * 218 / 255.0 - 1);
+    const Vec3 lean = shading_normal(forward, "lean.png"), back = shading_normal(mirrored, "lean.png");
+    EXPECT_NEAR(lean.x, c, 0.01);
+    EXPECT_NEAR(lean.z, c, 0.01);
+    EXPECT_NEAR(back.x, -c, 0.01);
+    EXPECT_NEAR(back.z, c, 0.01);
+    EXPECT_NEAR(shading_normal(forward, "flat.png").z, 1, 1e-4);
 }
 
 }  // namespace

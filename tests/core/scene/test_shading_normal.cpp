@@ -16,6 +16,7 @@ SurfaceInteraction flat_point_with_normal(const Vec3& ns) {
     SurfaceInteraction si;
     si.n = {0, 0, 1};
     si.ns = normalize(ns);
+    si.shaded = !(si.ns == si.n);
     return si;
 }
 
