@@ -111,14 +111,11 @@ inline unsigned Geometry::lanes_of(uint32_t key, uint32_t first) const {
 template <bool kAvx512>
 inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
     const uint32_t skip = leave_out_key(self);
-    const bool cutouts = has_cutouts();
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto test_run = [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
-        const unsigned left_out = lanes_of(skip, first);
-        int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, left_out, r, hit.triangle);
+        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lanes_of(skip, first), r, hit.triangle);
         if (i < 0) return false;
-        if (cutouts && (i = past_cutouts(run_test, first, count, left_out, r, i, hit.triangle)) < 0) return false;
         const uint32_t pos = first + static_cast<uint32_t>(i);
         hit.t = r.tmax = hit.triangle.t;
         hit.prim = triangle_id(triangle_at_.empty() ? pos : triangle_at_[pos]);
@@ -149,15 +146,34 @@ bool Geometry::triangle_blocks_avx512(const Ray& ray, uint32_t self, uint32_t ta
     return triangle_blocks(ray, self, target);
 }
 
-int Geometry::past_cutouts(const RunTest& test, uint32_t first, uint32_t count, unsigned left_out, const Ray& ray, int i,
-                           TriangleHit& hit) const {
-    const float* run = &triangle_runs_[9 * size_t(first)];
-    if (i == kUntested) i = test.closest(run, count, left_out, ray, hit);
-    while (i >= 0 && cut_away(first + uint32_t(i), hit)) {
-        left_out |= 1u << i;
-        i = test.closest(run, count, left_out, ray, hit);
+bool Geometry::closest_triangle_hit(Ray& ray, uint32_t self, Hit& hit) const {
+    return isa_ == Isa::avx512 ? closest_triangle_avx512(ray, self, hit) : closest_triangle_avx2(ray, self, hit);
+}
+
+// Each hit in a hole moves the ray's start to it, and the search goes on behind.
+// The ray's own tmin is kept: the spheres are tested on it next.
+bool Geometry::closest_past_cutouts(Ray& ray, uint32_t self, Hit& hit) const {
+    Ray r = ray;
+    while (closest_triangle_hit(r, self, hit)) {
+        if (!cut_away(hit)) {
+            ray.tmax = r.tmax;
+            return true;
+        }
+        r.tmin = hit.t;
+        r.tmax = ray.tmax;
     }
-    return i;
+    return false;
+}
+
+bool Geometry::blocked_past_cutouts(const Ray& ray, uint32_t self, uint32_t target) const {
+    Ray r = ray;
+    Hit hit;
+    while (closest_triangle_hit(r, self, hit)) {
+        if (hit.prim != target && !cut_away(hit)) return true;
+        r.tmin = hit.t;
+        r.tmax = ray.tmax;
+    }
+    return false;
 }
 
 bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
@@ -188,21 +204,17 @@ bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
     Ray r = ray;
     // A mesh scene pays nothing for spheres, not even the call, and a sphere scene nothing for
     // triangles (not even the ray's shear).
-    const bool triangle_hit = !run_slot_.empty() && (isa_ == Isa::avx512 ? closest_triangle_avx512(r, self, hit)
-                                                                            : closest_triangle_avx2(r, self, hit));
+    const bool triangle_hit = !run_slot_.empty() && (has_cutouts() ? closest_past_cutouts(r, self, hit) : closest_triangle_hit(r, self, hit));
     return (!spheres_.empty() && closest_sphere(r, self, hit)) || triangle_hit;
 }
 
 inline bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
     const uint32_t skip = leave_out_key(self), wanted = leave_out_key(target);
-    const bool cutouts = has_cutouts();
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) __attribute__((always_inline)) {
         const unsigned left_out = lanes_of(skip, first) | lanes_of(wanted, first);
-        if (!run_test.any(&triangle_runs_[9 * size_t(first)], count, left_out, r)) return false;
-        TriangleHit h;  // with cut-outs, a hit that some hole may take back
-        return !cutouts || past_cutouts(run_test, first, count, left_out, r, kUntested, h) >= 0;
+        return run_test.any(&triangle_runs_[9 * size_t(first)], count, left_out, r);
     };
     if (accelerator_ == Accelerator::bvh) return triangle_bvh_.any(ray, blocks);
     for (uint32_t pos = 0; pos < triangle_count_; ++pos)
@@ -225,8 +237,9 @@ bool Geometry::sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) con
 bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
     if (!has_finite_origin_and_direction(ray)) return false;
     return (!spheres_.empty() && sphere_blocks(ray, self, target)) ||
-           (!run_slot_.empty() && (isa_ == Isa::avx512 ? triangle_blocks_avx512(ray, self, target)
-                                                        : triangle_blocks_avx2(ray, self, target)));
+           (!run_slot_.empty() && (has_cutouts() ? blocked_past_cutouts(ray, self, target)
+                                   : isa_ == Isa::avx512 ? triangle_blocks_avx512(ray, self, target)
+                                                         : triangle_blocks_avx2(ray, self, target)));
 }
 
 SurfaceInteraction Geometry::interaction(const Ray& ray, const Hit& hit) const {
@@ -254,11 +267,11 @@ void Geometry::attach(TriangleAttributes attributes, CutOuts cutouts) {
     if (cutouts_.mask_of_triangle.empty()) cutouts_.masks.clear();
 }
 
-bool Geometry::cut_away(uint32_t pos, const TriangleHit& hit) const {
-    const uint32_t index = triangle_at_.empty() ? pos : triangle_at_[pos];
+bool Geometry::cut_away(const Hit& hit) const {
+    const uint32_t index = triangle_index(hit.prim);
     const uint32_t mask = cutouts_.mask_of_triangle[index];
     if (mask == CutOuts::kNoMask) return false;
-    const Uv uv = attributes_.uvs.empty() ? Uv{} : attributes_.uvs[index].at(hit.b1, hit.b2);
+    const Uv uv = attributes_.uvs.empty() ? Uv{} : attributes_.uvs[index].at(hit.triangle.b1, hit.triangle.b2);
     return !cutouts_.masks[mask].keeps(uv);
 }
 

@@ -150,14 +150,15 @@ private:
     size_t degenerate_ = 0;
     TriangleAttributes attributes_;
     CutOuts cutouts_;
-    // Whether the hit on the triangle at tree position `pos` falls in a hole of its cut-out.
-    bool cut_away(uint32_t pos, const TriangleHit& hit) const;
-    // The run's nearest hit outside `left_out` and outside the cut-outs' holes, from the run
-    // test's first answer `i` (its lane, -1, or kUntested), as RunTest::closest answers. Out of
-    // line and cold, so that the traversal of a scene without cut-outs is the code it was.
-    static constexpr int kUntested = -2;
-    [[gnu::noinline, gnu::cold]] int past_cutouts(const RunTest& test, uint32_t first, uint32_t count, unsigned left_out,
-                                                 const Ray& ray, int i, TriangleHit& hit) const;
+    // Whether a triangle hit falls in a hole of its cut-out.
+    bool cut_away(const Hit& hit) const;
+    // The closest triangle hit in the tree's instruction set.
+    bool closest_triangle_hit(Ray& ray, uint32_t self, Hit& hit) const;
+    // The closest hit and the occlusion test where there are cut-outs: the tree's queries again
+    // from each hit in a hole. Apart from the traversal, so that a scene without cut-outs runs
+    // the code it ran before them.
+    bool closest_past_cutouts(Ray& ray, uint32_t self, Hit& hit) const;
+    bool blocked_past_cutouts(const Ray& ray, uint32_t self, uint32_t target) const;
 };
 
 }  // namespace glint
