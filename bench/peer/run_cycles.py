@@ -1,11 +1,12 @@
 #!/usr/bin/python3
-"""glint against Blender Cycles on every mesh scene in scenes/, and on variants of them with rough
-mirrors and glass (VARIANTS): do they converge to the same image, and how long does each take to
-reach the same error? (bench/BENCHMARKS.md, "Against Cycles"; the scene translation is
-bench/peer/cycles_scene.py.)
+"""glint against Blender Cycles on every mesh scene in scenes/, on variants of them with rough
+mirrors and glass, and on the textured scene as Cycles 3.4 can hold it (VARIANTS): do they
+converge to the same image, and how long does each take to reach the same error?
+(bench/BENCHMARKS.md, "Against Blender Cycles"; the scene translation is bench/peer/cycles_scene.py.)
 
   /usr/bin/python3 bench/peer/run_cycles.py [--scenes mesh,cornell_box] [--width 160 --height 120]
                                             [--ladder 4,16,64,256] [--reference-spp 1024]
+                                            [--repeat N] [--glint PATH] [--results NAME] [--update]
 
 Installs Blender from Debian when it is missing (about 400 MB: never in CI). Both renderers run
 at 2 threads with a box pixel filter of width 1. For each scene and renderer: a ladder of renders
@@ -15,7 +16,9 @@ against its own reference, and the reference's own noise, (A - B)²/4 from its t
 off, so that neither is charged for the other's conventions; whether the two references agree is
 reported beside it. CPU seconds are the process's user + sys over the render (Cycles: the render
 call, scene sync included; glint: the whole command, scene load and BVH build included).
-Writes bench/results/peer_cycles.csv and bench/plots/peer_cycles.svg and prints a table.
+Writes bench/results/peer_cycles.csv (and _summary.json) and bench/plots/peer_cycles.svg, or with
+--results NAME bench/results/NAME.csv and bench/plots/NAME.svg (--update keeps the other scenes'
+rows there), and prints a table. The glint binary: --glint, else $GLINT, else build/server/glint.
 """
 import argparse
 import csv
@@ -30,7 +33,7 @@ import time
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-GLINT = os.path.join(ROOT, "build", "server", "glint")
+GLINT = os.environ.get("GLINT", os.path.join(ROOT, "build", "server", "glint"))
 SEEDS = {"ladder": 7, "reference": (101, 102)}
 
 
@@ -55,7 +58,9 @@ def mesh_scenes():
     return names
 
 
-# Mesh scenes with rough materials: a base scene and the materials that replace its objects'.
+# Variants of the scenes: a base scene, the materials that replace its objects' (`material`), and
+# optionally edits of its objects (fields set, None: removed; `as_mesh`: a sphere made an
+# icosphere of that many subdivisions, its material and emission kept).
 # Rough glass is left out: Cycles 3.4's rough Glass BSDF takes its Fresnel term at the shading
 # normal, not the microfacet's, so it is another surface.
 VARIANTS = {
@@ -63,16 +68,69 @@ VARIANTS = {
     "bunny_box_rough": ("bunny_box", {0: {"type": "mirror", "roughness": 0.25, "albedo": [0.8, 0.75, 0.65]},
                                       4: {"type": "mirror", "roughness": 0.15, "albedo": 0.9}}),
     "mesh_glass": ("mesh", {0: {"type": "glass", "fresnel": "exact", "ior": 1.5}}),
+    # The textured scene as Cycles 3.4 can hold it: its wood knot and glazed tiles are glint's
+    # plastic (glTF's dielectric), which no Cycles 3.4 BSDF is, so they become diffuse with the
+    # same colour textures (the tiles' roughness map goes); the leaf card keeps its map_d cut-out;
+    # the sphere sun becomes an icosphere of 1,280 triangles (Cycles has no sphere light in 3.4)
+    # with the sphere's emission. UVs, vertex normals and the sky are the scene's own.
+    "textured_diffuse": ("textured", {}, {
+        0: {"materials": {"wood": {"type": "diffuse", "albedo": {"texture": "textured/wood.png"}},
+                          "tiles": {"type": "diffuse", "albedo": {"texture": "textured/tiles.png"}}}},
+        1: {"as_mesh": 3}}),
+    # The same with the tiles a rough mirror (Glossy GGX) whose roughness is the tiles' map_Pr
+    # texture and whose colour is their colour texture: textured roughness in both renderers.
+    "textured_glossy": ("textured", {}, {
+        0: {"materials": {"wood": {"type": "diffuse", "albedo": {"texture": "textured/wood.png"}},
+                          "tiles": {"type": "mirror", "albedo": {"texture": "textured/tiles.png"},
+                                    "roughness": {"texture": "textured/tiles_rough.png"}}}},
+        1: {"as_mesh": 3}}),
 }
+
+
+def icosphere(center, radius, subdivisions):
+    """An icosahedron subdivided `subdivisions` times, its vertices on the sphere, faces outward."""
+    t = (1 + 5 ** 0.5) / 2
+    vertices = [np.array(v, float) for v in ((-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
+                                              (0, -1, -t), (0, 1, -t), (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1))]
+    vertices = [v / np.linalg.norm(v) for v in vertices]
+    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
+             (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11),
+             (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    for _ in range(subdivisions):
+        middle, finer = {}, []
+
+        def mid(a, b):
+            if (b, a) in middle:
+                return middle[(b, a)]
+            v = vertices[a] + vertices[b]
+            vertices.append(v / np.linalg.norm(v))
+            middle[(a, b)] = len(vertices) - 1
+            return middle[(a, b)]
+        for a, b, c in faces:
+            ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+            finer += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        faces = finer
+    return {"vertices": [[float(x) for x in np.asarray(center) + radius * v] for v in vertices],
+            "indices": [list(f) for f in faces]}
 
 
 def box_filter_copy(name):
     """The scene (or variant) with film.filter "box", beside the original so its mesh files resolve."""
-    base, materials = VARIANTS.get(name, (name, {}))
+    base, materials, *edits = VARIANTS.get(name, (name, {}))
     with open(os.path.join(ROOT, "scenes", base + ".json")) as f:
         scene = json.load(f)
     for index, material in materials.items():
         scene["objects"][index]["material"] = material
+    for index, fields in (edits[0] if edits else {}).items():
+        obj = scene["objects"][index]
+        for key, value in fields.items():
+            if key == "as_mesh":
+                sphere = {k: obj.pop(k) for k in ("center", "radius")}
+                obj.update(type="mesh", **icosphere(sphere["center"], sphere["radius"], value))
+            elif value is None:
+                obj.pop(key, None)
+            else:
+                obj[key] = value
     scene.setdefault("film", {})["filter"] = "box"
     path = os.path.join(ROOT, "scenes", f".peer-{name}.json")
     with open(path, "w") as f:
@@ -111,11 +169,18 @@ def run_cycles(scene, out, a, spp, seed):
 
 def run_both(scene, out, a, jobs):
     """Each job by glint, then at once by Cycles: the machine's speed drifts by 10-20% over
-    minutes, and renders side by side see the same machine."""
+    minutes, and renders side by side see the same machine. With --repeat N each ladder render
+    is made N times over, alternating, and its times are the medians (the images are the same
+    bits every time; the references' times are not used)."""
     glint, cycles = {}, {}
     for spp, seed in jobs:
-        glint[(spp, seed)] = run_glint(scene, out + "_glint", a, spp, seed)
-        cycles[(spp, seed)] = run_cycles(scene, out + "_cycles", a, spp, seed)
+        runs = {"glint": [], "cycles": []}
+        for _ in range(a.repeat if seed == SEEDS["ladder"] else 1):
+            runs["glint"].append(run_glint(scene, out + "_glint", a, spp, seed))
+            runs["cycles"].append(run_cycles(scene, out + "_cycles", a, spp, seed))
+        for results, renders in ((glint, runs["glint"]), (cycles, runs["cycles"])):
+            results[(spp, seed)] = (renders[0][0], float(np.median([r[1] for r in renders])),
+                                    float(np.median([r[2] for r in renders])))
     return glint, cycles
 
 
@@ -180,11 +245,11 @@ def plot(curves, path):
     fig.savefig(path)
 
 
-def kept_results(replaced):
+def kept_results(replaced, results):
     """The summaries, curves and table rows already in bench/results, less those of `replaced`."""
-    with open(os.path.join(ROOT, "bench", "results", "peer_cycles_summary.json")) as f:
+    with open(os.path.join(ROOT, "bench", "results", results + "_summary.json")) as f:
         summaries = [s for s in json.load(f) if s["scene"] not in replaced]
-    with open(os.path.join(ROOT, "bench", "results", "peer_cycles.csv"), newline="") as f:
+    with open(os.path.join(ROOT, "bench", "results", results + ".csv"), newline="") as f:
         table = [{k: (v if k in ("scene", "renderer") else float(v)) for k, v in r.items()}
                  for r in csv.DictReader(f) if r["scene"] not in replaced]
     curves = [(s["scene"], [r for r in table if r["scene"] == s["scene"] and r["renderer"] == "glint"],
@@ -193,6 +258,7 @@ def kept_results(replaced):
 
 
 def main():
+    global GLINT
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--scenes", default=",".join(mesh_scenes() + list(VARIANTS)))
     ap.add_argument("--width", type=int, default=160)
@@ -202,13 +268,18 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "bench", "out", "peer"))
     ap.add_argument("--update", action="store_true",
                     help="keep the other scenes' results in bench/results and replace only these scenes'")
+    ap.add_argument("--results", default="peer_cycles",
+                    help="bench/results/RESULTS.csv and RESULTS_summary.json, bench/plots/RESULTS.svg")
+    ap.add_argument("--repeat", type=int, default=1, help="make each ladder render this many times; times are medians")
+    ap.add_argument("--glint", default=GLINT, help="the glint binary (default: $GLINT, else build/server/glint)")
     a = ap.parse_args()
+    GLINT = a.glint
     a.ladder = [int(s) for s in a.ladder.split(",")]
     if not shutil.which("blender"):
         subprocess.run(["apt-get", "install", "-y", "--no-install-recommends", "blender"], check=True)
     os.makedirs(a.out, exist_ok=True)
     jobs = [(s, SEEDS["ladder"]) for s in a.ladder] + [(a.reference_spp, s) for s in SEEDS["reference"]]
-    summaries, curves, table = kept_results(a.scenes.split(",")) if a.update else ([], [], [])
+    summaries, curves, table = kept_results(a.scenes.split(","), a.results) if a.update else ([], [], [])
     for name in a.scenes.split(","):
         copy = box_filter_copy(name)
         try:
@@ -221,13 +292,13 @@ def main():
         for renderer, rows in (("glint", g_rows), ("cycles", c_rows)):
             table += [{"scene": name, "renderer": renderer, **r} for r in rows]
         print(json.dumps(summary), flush=True)
-    with open(os.path.join(ROOT, "bench", "results", "peer_cycles.csv"), "w", newline="") as f:
+    with open(os.path.join(ROOT, "bench", "results", a.results + ".csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=["scene", "renderer", "spp", "cpu", "wall", "mse", "relmse"])
         w.writeheader()
         w.writerows(table)
-    with open(os.path.join(ROOT, "bench", "results", "peer_cycles_summary.json"), "w") as f:
+    with open(os.path.join(ROOT, "bench", "results", a.results + "_summary.json"), "w") as f:
         json.dump(summaries, f, indent=1)
-    plot(curves, os.path.join(ROOT, "bench", "plots", "peer_cycles.svg"))
+    plot(curves, os.path.join(ROOT, "bench", "plots", a.results + ".svg"))
     print("| scene | glint/Cycles mean (R, G, B) | RMSE between references (noise) | Cycles/glint time to equal MSE, CPU (wall) | MSE per spp, glint/Cycles | CPU per spp, glint/Cycles |")
     print("|---|---|---|---|---|---|")
     for s in summaries:
