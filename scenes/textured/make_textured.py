@@ -169,39 +169,35 @@ def tile_cell(u, v):
     return i, j, edge
 
 
+def texel_image(texel):
+    """SIZE x SIZE texels, rows top first: texel(u, v) at each texel's centre."""
+    return [[texel(*texel_uv(col, row)) for col in range(SIZE)] for row in range(SIZE)]
+
+
 def tiles():
     """Terracotta and cream tiles in a checker, 2 x 2 to a repeat, with grout lines."""
     terracotta, cream, grout = srgb_bytes((176, 88, 58)), srgb_bytes((228, 214, 186)), srgb_bytes((112, 108, 100))
-    img = []
-    for row in range(SIZE):
-        line = []
-        for col in range(SIZE):
-            u, v = texel_uv(col, row)
-            i, j, edge = tile_cell(u, v)
-            base = terracotta if (i + j) % 2 else cream
-            jitter = 0.94 + 0.1 * _hash(i, j, 5)
-            mottle = 0.92 + 0.16 * fbm(u, v, 4, 4, 31)
-            bevel = 0.85 + 0.15 * smoothstep(GROUT, GROUT + 5 / SIZE, edge)
-            c = tuple(x * jitter * mottle * bevel for x in base)
-            t = smoothstep(GROUT - 0.7 / SIZE, GROUT + 0.7 / SIZE, edge)
-            line.append(mix(grout, c, t))
-        img.append(line)
-    write_png("tiles.png", img, 3, srgb=True)
+
+    def texel(u, v):
+        i, j, edge = tile_cell(u, v)
+        base = terracotta if (i + j) % 2 else cream
+        jitter = 0.94 + 0.1 * _hash(i, j, 5)
+        mottle = 0.92 + 0.16 * fbm(u, v, 4, 4, 31)
+        bevel = 0.85 + 0.15 * smoothstep(GROUT, GROUT + 5 / SIZE, edge)
+        c = tuple(x * jitter * mottle * bevel for x in base)
+        t = smoothstep(GROUT - 0.7 / SIZE, GROUT + 0.7 / SIZE, edge)
+        return mix(grout, c, t)
+    write_png("tiles.png", texel_image(texel), 3, srgb=True)
 
 
 def tiles_rough():
     """Roughness, linear: the glazed tiles glossy, the grout rough."""
-    img = []
-    for row in range(SIZE):
-        line = []
-        for col in range(SIZE):
-            u, v = texel_uv(col, row)
-            _, _, edge = tile_cell(u, v)
-            glaze = 0.28 + 0.14 * fbm(u, v, 8, 8, 41)
-            t = smoothstep(GROUT - 0.7 / SIZE, GROUT + 0.7 / SIZE, edge)
-            line.append((0.9 + (glaze - 0.9) * t,))
-        img.append(line)
-    write_png("tiles_rough.png", img, 1, srgb=False)
+    def texel(u, v):
+        _, _, edge = tile_cell(u, v)
+        glaze = 0.28 + 0.14 * fbm(u, v, 8, 8, 41)
+        t = smoothstep(GROUT - 0.7 / SIZE, GROUT + 0.7 / SIZE, edge)
+        return (0.9 + (glaze - 0.9) * t,)
+    write_png("tiles_rough.png", texel_image(texel), 1, srgb=False)
 
 
 def stem_x(v):
