@@ -279,7 +279,7 @@ private:
         const bool any = maps.shades() || maps.alpha.present() || maps.has(maps.normal);
         if (!any) {
             m.maps = Material::kNoMaps;
-        } else if (m.maps == Material::kNoMaps || !same_maps(surfaces_.maps[m.maps], maps)) {
+        } else {
             m.maps = uint32_t(surfaces_.maps.size());
             surfaces_.maps.push_back(maps);
         }
@@ -298,18 +298,6 @@ private:
         kept.normal = old.normal;
         kept.normal_strength = old.normal_strength;
         return with_maps(out, kept);
-    }
-
-    static bool same_lookup(const TextureLookup& a, const TextureLookup& b) {
-        return a.texture == b.texture && a.scale == b.scale && a.uv_scale[0] == b.uv_scale[0] &&
-               a.uv_scale[1] == b.uv_scale[1] && a.uv_offset[0] == b.uv_offset[0] && a.uv_offset[1] == b.uv_offset[1] &&
-               a.colorspace == b.colorspace && a.channel == b.channel;
-    }
-    static bool same_maps(const MaterialMaps& a, const MaterialMaps& b) {
-        return same_lookup(a.albedo, b.albedo) && same_lookup(a.roughness, b.roughness) &&
-               same_lookup(a.metallic, b.metallic) && same_lookup(a.emission, b.emission) &&
-               same_lookup(a.alpha.alpha, b.alpha.alpha) && a.alpha.cutoff == b.alpha.cutoff &&
-               same_lookup(a.normal, b.normal) && a.normal_strength == b.normal_strength;
     }
 
     // What a texture gives: a colour (sRGB-decoded by default), an emission (likewise), a

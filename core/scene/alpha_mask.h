@@ -1,5 +1,5 @@
 // A cut-out: where a texture's alpha is below a cut-off, the surface is not there for any ray
-// (glTF's alphaMode MASK, an MTL map_d). Tested inside the traversal, so shadow rays, light
+// (glTF's alphaMode MASK, an MTL map_d). Geometry's queries skip the holes, so shadow rays, light
 // paths and camera rays all pass through the same holes.
 #pragma once
 
