@@ -112,29 +112,30 @@ void JobManager::forget_old_finished(uint64_t reserve) {
 
 void JobManager::restore(const std::function<LoadedScene(const std::string&)>& parse) {
     if (!store_) return;
-    size_t restored = 0, unfinished = 0;
+    std::vector<std::shared_ptr<Job>> restored_jobs;
     for (const StoredJob& stored : store_->load()) {
-        std::shared_ptr<Job> job;
         try {
-            job = restore_job(stored, parse(stored.request));
+            restored_jobs.push_back(restore_job(stored, parse(stored.request)));
         } catch (const std::exception& e) {
             spdlog::error("store: job {} left out: its request is not accepted any more: {}", stored.id, e.what());
-            continue;
         }
+    }
+    size_t unfinished = 0;
+    {
+        // All at once: a slot that saw the first restored job queued alone would start it ahead
+        // of a later one of higher priority.
         std::lock_guard lock(mutex_);
-        jobs_[job->id()] = job;
-        order_.push_back(job->id());
-        ++restored;
-        if (!is_final(job->snapshot().state)) {
+        for (const auto& job : restored_jobs) {
+            jobs_[job->id()] = job;
+            order_.push_back(job->id());
+            if (is_final(job->snapshot().state)) continue;
             queue_.push_back(job);
             ++unfinished;
         }
-    }
-    {
-        std::lock_guard lock(mutex_);
         forget_old_finished();
     }
     work_.notify_all();
+    const size_t restored = restored_jobs.size();
     spdlog::info("store {}: {} jobs restored, {} of them to resume; {} bytes in use, limit {} bytes",
                  store_->config().dir.string(), restored, unfinished, store_->bytes_used(), store_->config().limit_bytes);
 }
