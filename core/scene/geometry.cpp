@@ -243,9 +243,11 @@ bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
 }
 
 SurfaceInteraction Geometry::interaction(const Ray& ray, const Hit& hit) const {
-    if (is_sphere(hit.prim)) return spheres_[hit.prim].interaction(ray, hit.t, hit.prim);
-    SurfaceInteraction si = triangle(hit.prim).interaction(hit.triangle, hit.prim);
-    if (!attributes_.normals.empty() && smooth(hit.prim)) {
+    // One named result, built in place: a second return would copy the whole record.
+    const bool sphere = is_sphere(hit.prim);
+    SurfaceInteraction si = sphere ? spheres_[hit.prim].interaction(ray, hit.t, hit.prim)
+                                   : triangle(hit.prim).interaction(hit.triangle, hit.prim);
+    if (!sphere && !attributes_.normals.empty() && smooth(hit.prim)) {
         const Vec3 ns = attributes_.normals[triangle_index(hit.prim)].at(si.b1, si.b2);
         const double length2 = dot(ns, ns);
         // Corner normals that cancel, or overflow, leave the geometric normal.

@@ -76,7 +76,7 @@ void Scene::map_normal(SurfaceInteraction& si) const {
     const MaterialMaps& maps = maps_[m.maps];
     const Uv uv = geometry_.uv(si);
     const Rgb c = maps.normal.rgb(uv.u, uv.v);
-    const Vec3 n = si.ns, t = tangent - n * dot(n, tangent);
+    const Vec3 n = si.shading_normal(), t = tangent - n * dot(n, tangent);
     const Vec3 mapped = t * ((2 * c.x - 1) * maps.normal_strength / length(t)) +
                         cross(n, t) * ((2 * c.y - 1) * maps.normal_strength * sign / length(t)) + n * (2 * c.z - 1);
     const double l = length(mapped);

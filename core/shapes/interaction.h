@@ -9,12 +9,15 @@ struct SurfaceInteraction {
     Vec3 p;        // the hit point as computed
     Vec3 p_error;  // per-axis bound on |p - exact point|
     Vec3 n;        // unit geometric normal: outward for spheres, right-handed winding for triangles
-    // The unit shading normal a mesh's vertex normals give (interpolated), on n's side; n itself
-    // where there are none. scene/shading_normal.h says how the BSDF uses it.
+    // Where `shaded`, the unit shading normal a mesh's vertex normals or a normal map give, on
+    // n's side (scene/shading_normal.h says how the BSDF uses it); elsewhere unset and never read,
+    // as are b1 and b2 off triangles: a record filled on every hit pays only for what it uses.
     Vec3 ns;
-    bool shaded = false;  // ns differs from n
-    double b1 = 0, b2 = 0;  // a triangle's barycentric weights of v1 and v2, for its attributes
+    bool shaded = false;
+    double b1, b2;  // a triangle's barycentric weights of v1 and v2, for its attributes
     uint32_t prim = kNoPrimitive;
+
+    const Vec3& shading_normal() const { return shaded ? ns : n; }
 };
 
 // Moves p off the surface, to the side that w points to, by just more than its error bound

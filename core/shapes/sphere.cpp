@@ -12,7 +12,6 @@ SurfaceInteraction Sphere::interaction(const Ray& ray, double t, uint32_t prim) 
     si.p = centre + local;
     si.p_error = abs(local) * gamma(5) + abs(si.p) * gamma(1);
     si.n = local / radius;
-    si.ns = si.n;
     si.prim = prim;
     return si;
 }

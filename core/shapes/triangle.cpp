@@ -14,7 +14,6 @@ SurfaceInteraction Triangle::interaction(const TriangleHit& hit, uint32_t prim) 
     si.p = w0 + w1 + w2;
     si.p_error = (abs(w0) + abs(w1) + abs(w2)) * gamma(7);
     si.n = normalize(unnormalized_normal());
-    si.ns = si.n;
     si.b1 = hit.b1;
     si.b2 = hit.b2;
     si.prim = prim;

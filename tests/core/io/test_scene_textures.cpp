@@ -253,7 +253,7 @@ TEST_F(SceneTextures, ANormalMapLeansTheShadingNormalAlongTheTangentFrame) {
         Hit hit;
         EXPECT_TRUE(s.scene->geometry().intersect(ray, kNoPrimitive, hit));
         EXPECT_FALSE(s.scene->flags(hit.prim).is_diffuse());  // a normal-mapped Lambertian is glossy
-        return s.scene->interaction(ray, hit).ns;
+        return s.scene->interaction(ray, hit).shading_normal();
     };
     const std::string forward = "[[0, 0], [1, 0], [1, 1], [0, 1]]", mirrored = "[[1, 0], [0, 0], [0, 1], [1, 1]]";
     const double c = (2 * 218 / 255.0 - 1) / std::hypot(2 * 218 / 255.0 - 1, 2 * 218 / 255.0 - 1);
