@@ -34,6 +34,17 @@ void surface_maps(Fnv1a& h, const Scene& scene) {
     }
 }
 
+// Nothing for a scene without an environment, whose fingerprint stays what it was before.
+void environment(Fnv1a& h, const Scene& scene) {
+    const Environment* env = scene.environment();
+    if (!env) return;
+    for (int v : {env->width(), env->height()}) h.value(v);
+    h.bytes(env->texels().data(), env->texels().size_bytes());
+    h.value(env->settings().strength);
+    h.value(env->settings().rotation);
+    h.value(env->settings().visible);
+}
+
 }  // namespace
 
 uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
@@ -70,6 +81,7 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
         if (m.maps != Material::kNoMaps) h.value(m.maps);
     }
     surface_maps(h, scene);
+    environment(h, scene);
     h.value(settings.width);
     h.value(settings.height);
     h.value(settings.filter);

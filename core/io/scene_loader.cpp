@@ -110,7 +110,7 @@ public:
     SceneParser(const std::filesystem::path& folder, const SceneLimits& limits) : folder_(folder), limits_(limits) {}
 
     LoadedScene parse(const At& root) {
-        root.expect_object({"description", "camera", "film", "integrator", "objects"});
+        root.expect_object({"description", "camera", "film", "integrator", "objects", "environment"});
         if (root.has("description") && !root["description"].value.is_string())
             root["description"].fail("must be a string");
         LoadedScene loaded;
@@ -122,7 +122,9 @@ public:
         if (integrator.light_tracing == LightTracing::on && camera.aperture > 0)
             root["integrator"]["light_tracing"].fail("\"on\" needs a pinhole camera (camera.aperture 0)");
         if (root.has("objects")) parse_objects(root["objects"]);
-        loaded.scene = std::make_shared<const Scene>(camera, background, integrator, std::move(surfaces_));
+        auto environment = root.has("environment") ? parse_environment(root["environment"]) : nullptr;
+        loaded.scene = std::make_shared<const Scene>(camera, background, integrator, std::move(surfaces_),
+                                                     std::move(environment));
         loaded.warnings = std::move(warnings_);
         return loaded;
     }
@@ -362,6 +364,15 @@ private:
     // The texture file at `full`, which the scene names `name` at `at`.
     const Texture* load_texture(const At& at, const std::filesystem::path& full, const std::string& name) {
         if (const auto known = texture_files_.find(full); known != texture_files_.end()) return known->second.get();
+        auto texture = std::make_shared<const Texture>(decode_image(at, full, name));
+        texture_files_.emplace(full, texture);
+        surfaces_.textures.push_back(texture);
+        return texture.get();
+    }
+
+    // The image file at `full`, counted against the scene's texel limits, its negative values
+    // set to 0 with a warning.
+    Texture decode_image(const At& at, const std::filesystem::path& full, const std::string& name) {
         try {
             DecodedTexture decoded = decode_texture(read_file(full.string(), limits_.max_file_bytes), name,
                                                     TextureLimits{limits_.max_texels_per_file});
@@ -370,15 +381,24 @@ private:
                 at.fail("the scene's textures would hold more than " + std::to_string(limits_.max_texels) + " texels");
             if (decoded.negative_values > 0)
                 warnings_.push_back(at.path + ": " + std::to_string(decoded.negative_values) + " negative values in " + name + " set to 0");
-            auto texture = std::make_shared<const Texture>(std::move(decoded.texture));
-            texture_files_.emplace(full, texture);
-            surfaces_.textures.push_back(texture);
-            return texture.get();
+            return std::move(decoded.texture);
         } catch (const SceneError&) {
             throw;
         } catch (const std::exception& e) {
             at.fail(e.what());
         }
+    }
+
+    std::shared_ptr<const Environment> parse_environment(const At& at) {
+        at.expect_object({"file", "strength", "rotation", "visible"});
+        if (!at.has("file")) at.fail("needs a \"file\": an equirectangular .exr or .hdr image");
+        EnvironmentSettings s;
+        if (at.has("strength")) s.strength = at["strength"].number_in(0, kMaxEmission);
+        if (at.has("rotation")) s.rotation = at["rotation"].number_in(-3600, 3600);
+        if (at.has("visible")) s.visible = at["visible"].boolean();
+        const At file = at["file"];
+        const Texture image = decode_image(file, scene_file(file), file.value.get<std::string>());
+        return std::make_shared<const Environment>(Environment::from_texture(image, s));
     }
 
     // at[key], which the material's type must have (else `message` at its path).

@@ -47,7 +47,7 @@ Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const 
     LightSample ls;
     const Vec3 facing = dot(d, si.n) < 0 ? si.n : -si.n;
     if (!scene_.lights().sample(si.p, si.prim, u1, u2, ls, facing)) return Rgb{0};
-    if (scene_.has_textured_lights() && scene_.material(ls.prim).maps != Material::kNoMaps)
+    if (scene_.has_textured_lights() && ls.prim != kNoPrimitive && scene_.material(ls.prim).maps != Material::kNoMaps)
         ls.emission = scene_.emission_at(si.p, ls);
     const BsdfValue f = bsdf.evaluate(-d, ls.wi);
     Rgb value = beta * f.f_cos * ls.emission * (power_heuristic(ls.pdf, f.pdf) / ls.pdf);
@@ -179,6 +179,16 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, Vert
     return true;
 }
 
+Rgb PathTracer::escaped(const PathState& path, bool nee) const {
+    const Environment* environment = scene_.environment();
+    if (!environment || (path.seen_directly && !environment->settings().visible)) return scene_.background();
+    const Rgb radiance = environment->radiance(path.ray.d);
+    // Light tracing and the caster sampler start no path at the environment: next-event
+    // estimation is the only other way here.
+    if (!nee || path.specular) return radiance;
+    return radiance * power_heuristic(path.bsdf_pdf, scene_.lights().environment_pdf(path.ray.d));
+}
+
 double PathTracer::found_light_weight(const PathState& path, const SurfaceInteraction& si, bool nee) const {
     if (nee && !path.specular)
         return power_heuristic(path.bsdf_pdf,
@@ -230,7 +240,7 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov
         const Ray& ray = path.ray;
         Hit hit;
         if (!scene_.geometry().intersect(ray, path.self, hit)) {
-            if (path.counts_found_light()) result += path.throughput * scene_.background();
+            if (path.counts_found_light()) result += path.throughput * escaped(path, nee);
             break;
         }
         const BsdfFlags flags = scene_.flags(hit.prim);

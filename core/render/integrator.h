@@ -134,6 +134,9 @@ private:
     // strategy could also have found it (mis.h): next-event estimation, a light path or the
     // CasterSampler; 1 where none could.
     double found_light_weight(const PathState& path, const SurfaceInteraction& si, bool nee) const;
+    // What a path that leaves the scene finds: the environment, weighed against next-event
+    // estimation's sampling of it, or the film's background.
+    Rgb escaped(const PathState& path, bool nee) const;
     // The emission of the surface `hit` along `ray`, textured or not.
     Rgb emission_at(const Ray& ray, const Hit& hit) const;
     // What non-specular vertex si gathers, added to `result` in turn: next-event estimation

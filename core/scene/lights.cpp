@@ -8,7 +8,7 @@
 namespace glint {
 
 LightSet::LightSet(const Geometry& geometry, const std::vector<Material>& materials,
-                   const std::vector<uint32_t>& material_of_prim)
+                   const std::vector<uint32_t>& material_of_prim, const Environment* environment)
     : geometry_(&geometry), light_of_prim_(geometry.primitive_count(), kNoLight) {
     std::vector<double> power;
     for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim) {
@@ -38,10 +38,35 @@ LightSet::LightSet(const Geometry& geometry, const std::vector<Material>& materi
         lights_.push_back(light);
         power.push_back(area * std::max(luminance(m.emission), 1e-300));
     }
+    if (environment && environment->luminance_integral() > 0) {
+        // Two-sided emitters are weighed by area × radiance, their power over 2π; the
+        // environment's power through the scene's bounding sphere is π·r²·∫L dω.
+        const double r = bounding_radius(geometry);
+        environment_ = environment;
+        power.push_back(0.5 * r * r * environment->luminance_integral());
+    }
     double total = 0;
     for (double p : power) cdf_.push_back(total += p);
     for (double& c : cdf_) c /= total;
     if (!cdf_.empty()) cdf_.back() = 1;
+}
+
+double LightSet::bounding_radius(const Geometry& geometry) {
+    Bounds3 box;
+    for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim)
+        box.extend(geometry.is_sphere(prim) ? geometry.sphere(prim).bounds() : geometry.triangle(prim).bounds());
+    const double r = 0.5 * length(box.hi - box.lo);
+    return r > 0 && std::isfinite(r) ? r : 1;
+}
+
+bool LightSet::sample_environment(double u1, double u2, double share, LightSample& out) const {
+    double pdf;
+    if (!environment_->sample(u1, u2, out.wi, pdf)) return false;
+    out.distance = kInfinity;
+    out.emission = environment_->radiance(out.wi);
+    out.prim = kNoPrimitive;
+    out.pdf = pdf * share;
+    return out.pdf > 0 && std::isfinite(out.pdf);
 }
 
 double LightSet::pick_probability(size_t light) const {
@@ -102,14 +127,15 @@ double LightSet::toward(const Vec3& p, const Vec3& q, const Vec3& nq, double are
 
 bool LightSet::sample(const Vec3& p, uint32_t self, double u1, double u2, LightSample& out,
                       const Vec3& facing) const {
-    if (lights_.empty()) return false;
+    if (cdf_.empty()) return false;
     const size_t index = std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u1) - cdf_.begin(),
-                                          lights_.size() - 1);
+                                          cdf_.size() - 1);
     // u1 picks the light and, stretched over the light's own share of [0, 1), places the point on
     // it: stratified (u1, u2) stay stratified over every light, where a separate random pick
     // would hand each triangle of a quad a random half of the strata.
     const double below = index == 0 ? 0 : cdf_[index - 1], share = cdf_[index] - below;  // pick_probability
     u1 = std::clamp((u1 - below) / share, 0.0, kOneMinusEpsilon);
+    if (index == lights_.size()) return sample_environment(u1, u2, share, out);
     const Light& light = lights_[index];
     out.prim = light.prim;
     out.emission = light.emission;

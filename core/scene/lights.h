@@ -4,11 +4,13 @@
 // opaque sphere cuts is seen only through the cap on the shading point's side of that sphere's
 // surface; where that cap is smaller than the light's horizon, light sampling picks points on it
 // by area instead (smallpt's light: a disc of radius 18 instead of a nearly full hemisphere of
-// directions of which the ceiling hides 97%).
+// directions of which the ceiling hides 97%). An environment is one more light, sampled by its
+// own distribution, its power that of its radiance falling on the scene's bounding sphere.
 #pragma once
 
 #include <vector>
 
+#include "scene/environment.h"
 #include "scene/geometry.h"
 #include "scene/material.h"
 #include "shapes/sphere_cap.h"
@@ -20,7 +22,7 @@ struct LightSample {
     double distance;  // along wi
     Rgb emission;
     double pdf;       // solid-angle density, including the choice of this light
-    uint32_t prim;
+    uint32_t prim;    // kNoPrimitive: the environment (distance infinite)
     double b1 = 0, b2 = 0;  // on a triangle light, the point's barycentric weights of v1 and v2
 };
 
@@ -28,10 +30,10 @@ class LightSet {
 public:
     LightSet() = default;
     LightSet(const Geometry& geometry, const std::vector<Material>& materials,
-             const std::vector<uint32_t>& material_of_prim);
+             const std::vector<uint32_t>& material_of_prim, const Environment* environment = nullptr);
 
-    bool empty() const { return lights_.empty(); }
-    size_t size() const { return lights_.size(); }
+    bool empty() const { return cdf_.empty(); }
+    size_t size() const { return cdf_.size(); }
 
     // A light point as seen from p, which lies on primitive `self` (or kNoPrimitive); `facing`
     // is self's unit normal on the side p looks from (zero if unknown). u1 both picks the light,
@@ -40,6 +42,11 @@ public:
                 const Vec3& facing = Vec3{}) const;
     // The solid-angle density with which sample() would have produced `hit` seen from p.
     double pdf(const Vec3& p, uint32_t self, const SurfaceInteraction& hit, const Vec3& facing = Vec3{}) const;
+    // The solid-angle density with which sample() would have produced direction d toward the
+    // environment.
+    double environment_pdf(const Vec3& d) const {
+        return environment_ ? environment_->pdf(d) * pick_probability(lights_.size()) : 0;
+    }
 
 private:
     struct Light {
@@ -67,8 +74,12 @@ private:
     // The distance from p to the centre of sphere light `prim` if p sees it as a cone, else 0.
     double cone_distance(const Vec3& p, uint32_t self, uint32_t prim) const;
     double pick_probability(size_t light) const;
+    static double bounding_radius(const Geometry& geometry);
+    // The environment's share: its direction, radiance and density into `out`.
+    bool sample_environment(double u1, double u2, double share, LightSample& out) const;
 
     const Geometry* geometry_ = nullptr;
+    const Environment* environment_ = nullptr;  // when it sheds light: the last entry of cdf_
     std::vector<Light> lights_;
     std::vector<OccludedCap> caps_;  // each light's, smallest first
     std::vector<double> cdf_;                // cumulative power, normalised; cdf_.back() == 1

@@ -44,7 +44,8 @@ void add_tangents(const Geometry& geometry, TriangleAttributes& attributes) {
 
 }  // namespace
 
-Scene::Scene(CameraSettings camera, Rgb background, IntegratorSettings integrator, SceneSurfaces surfaces)
+Scene::Scene(CameraSettings camera, Rgb background, IntegratorSettings integrator, SceneSurfaces surfaces,
+             std::shared_ptr<const Environment> environment)
     : camera_(camera),
       background_(background),
       integrator_(integrator),
@@ -54,7 +55,8 @@ Scene::Scene(CameraSettings camera, Rgb background, IntegratorSettings integrato
       maps_(std::move(surfaces.maps)),
       textures_(std::move(surfaces.textures)),
       has_normals_(!surfaces.attributes.normals.empty()),
-      lights_(geometry_, everywhere(materials_, maps_), material_of_prim_) {
+      environment_(std::move(environment)),
+      lights_(geometry_, everywhere(materials_, maps_), material_of_prim_, environment_.get()) {
     for (const Material& m : materials_) {
         has_normal_maps_ |= has_normal_map(m, maps_);
         has_textured_lights_ |= m.maps != Material::kNoMaps && (m.is_emissive() || maps_[m.maps].has(maps_[m.maps].emission));

@@ -45,7 +45,11 @@ struct SceneSurfaces {
 // geometry.
 class Scene {
 public:
-    Scene(CameraSettings camera, Rgb background, IntegratorSettings integrator, SceneSurfaces surfaces);
+    // An environment, if given, lights the scene from far away; film.background is then what
+    // only camera rays and the mirror and glass paths straight from the camera see, where it
+    // is not visible to them.
+    Scene(CameraSettings camera, Rgb background, IntegratorSettings integrator, SceneSurfaces surfaces,
+          std::shared_ptr<const Environment> environment = nullptr);
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
 
@@ -54,6 +58,7 @@ public:
     const IntegratorSettings& integrator() const { return integrator_; }
     const Geometry& geometry() const { return geometry_; }
     const LightSet& lights() const { return lights_; }
+    const Environment* environment() const { return environment_.get(); }
     // Primitive prim's material as the scene states it (a textured parameter: its scale).
     const Material& material(uint32_t prim) const { return materials_[material_of_prim_[prim]]; }
     // Its BSDF's flags, as the strategies choose by them: the same anywhere on the primitive
@@ -101,6 +106,7 @@ private:
     bool has_normal_maps_ = false;
     bool has_textured_lights_ = false;
     void map_normal(SurfaceInteraction& si) const;
+    std::shared_ptr<const Environment> environment_;
     LightSet lights_;
 };
 

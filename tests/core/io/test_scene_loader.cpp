@@ -69,8 +69,9 @@ TEST(SceneLoader, LoadsSmallptsCornellBox) {
     EXPECT_EQ(s.scene->camera().near, 140);
 }
 
-// Every example scene loads without a warning (the public meshes some of them use may be
-// missing: scenes/meshes/fetch.sh puts them in place; such scenes are left out, and said).
+// Every example scene loads without a warning but the count of an environment file's negative values
+// (the public meshes some of them use may be missing: scenes/meshes/fetch.sh puts them in place;
+// such scenes are left out, and said).
 TEST(SceneLoader, ExampleScenesAllLoadWithoutWarnings) {
     for (const auto& entry : std::filesystem::directory_iterator(GLINT_SCENES_DIR)) {
         if (entry.path().extension() != ".json" || entry.path().filename().string()[0] == '.') continue;
@@ -84,7 +85,10 @@ TEST(SceneLoader, ExampleScenesAllLoadWithoutWarnings) {
             continue;
         }
         try {
-            EXPECT_TRUE(load_scene(entry.path()).warnings.empty()) << entry.path();
+            // The photographed environments' lossy compression left negative values, which
+            // scenes/environments/README.md counts: that warning is theirs, and the only one.
+            for (const std::string& warning : load_scene(entry.path()).warnings)
+                EXPECT_NE(warning.find("negative values in environments/"), std::string::npos) << entry.path() << ": " << warning;
         } catch (const SceneError& e) {
             ADD_FAILURE() << entry.path() << ": " << e.what();
         }
@@ -146,7 +150,7 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
     EXPECT_EQ(error_of(R"({"integrator": {"direct_view_rays": 65}})"), "integrator.direct_view_rays: must be in [0, 64]");
     EXPECT_EQ(error_of(R"({"objects": {}})"), "objects: must be an array");
     EXPECT_EQ(error_of(R"({"colour": 1})"),
-              "colour: unknown field (expected one of: description, camera, film, integrator, objects)");
+              "colour: unknown field (expected one of: description, camera, film, integrator, objects, environment)");
 }
 
 TEST(SceneLoader, MalformedAndHostileJsonIsRejectedCleanly) {

@@ -7,12 +7,12 @@
 
 #include "io/scene_loader.h"
 #include "support/image_files.h"
+#include "support/scene_folder.h"
 #include "support/test_support.h"
 
 namespace glint {
 namespace {
 
-using testing::ScratchFolder;
 
 // A 2×2 RGB texture, rows top first: red, green over blue, white.
 const std::vector<uint8_t> kQuadrants = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255};
@@ -24,19 +24,10 @@ std::string quad_scene(const std::string& material, const std::string& extra = "
            material + "}" + extra + "]}";
 }
 
-class SceneTextures : public ::testing::Test {
+class SceneTextures : public testing::SceneFolderTest {
 protected:
-    SceneTextures() : folder_("glint-scene-textures") {
+    SceneTextures() : SceneFolderTest("glint-scene-textures") {
         folder_.write("quadrants.png", testing::png(2, 2, 3, kQuadrants));
-    }
-    LoadedScene load(const std::string& text) const { return parse_scene(text, folder_.path()); }
-    std::string error_of(const std::string& text) const {
-        try {
-            load(text);
-        } catch (const SceneError& e) {
-            return e.what();
-        }
-        return "no error";
     }
     // The material of the quad at uv, found by a ray through the point with those UVs.
     static Material at_uv(const Scene& scene, double u, double v) {
@@ -46,7 +37,6 @@ protected:
         Material scratch;
         return scene.material_at(scene.geometry().interaction(ray, hit), scratch);
     }
-    ScratchFolder folder_;
 };
 
 TEST_F(SceneTextures, AlbedoIsLookedUpAtTheInterpolatedUvsWithVUpward) {
