@@ -181,7 +181,7 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, Vert
 
 Rgb PathTracer::escaped(const PathState& path, bool nee) const {
     const Environment* environment = scene_.environment();
-    if (!environment || (path.seen_directly && !environment->settings().visible)) return scene_.background();
+    if (path.seen_directly && !environment->settings().visible) return scene_.background();
     const Rgb radiance = environment->radiance(path.ray.d);
     // Light tracing and the caster sampler start no path at the environment: next-event
     // estimation is the only other way here.
@@ -240,7 +240,8 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov
         const Ray& ray = path.ray;
         Hit hit;
         if (!scene_.geometry().intersect(ray, path.self, hit)) {
-            if (path.counts_found_light()) result += path.throughput * escaped(path, nee);
+            if (path.counts_found_light())
+                result += path.throughput * (scene_.environment() ? escaped(path, nee) : scene_.background());
             break;
         }
         const BsdfFlags flags = scene_.flags(hit.prim);
