@@ -34,8 +34,13 @@ void surface_maps(Fnv1a& h, const Scene& scene) {
     }
 }
 
-// Nothing for a scene without an environment, whose fingerprint stays what it was before.
-void environment(Fnv1a& h, const Scene& scene) {
+// Nothing for a scene without an environment or a sun, whose fingerprint stays what it was.
+void distant_lights(Fnv1a& h, const Scene& scene) {
+    if (const Sun* sun = scene.sun()) {
+        h.vec(sun->settings().direction);
+        h.vec(sun->settings().irradiance);
+        h.value(sun->settings().angle);
+    }
     const Environment* env = scene.environment();
     if (!env) return;
     for (int v : {env->width(), env->height()}) h.value(v);
@@ -81,7 +86,7 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
         if (m.maps != Material::kNoMaps) h.value(m.maps);
     }
     surface_maps(h, scene);
-    environment(h, scene);
+    distant_lights(h, scene);
     h.value(settings.width);
     h.value(settings.height);
     h.value(settings.filter);

@@ -110,7 +110,7 @@ public:
     SceneParser(const std::filesystem::path& folder, const SceneLimits& limits) : folder_(folder), limits_(limits) {}
 
     LoadedScene parse(const At& root) {
-        root.expect_object({"description", "camera", "film", "integrator", "objects", "environment"});
+        root.expect_object({"description", "camera", "film", "integrator", "objects", "environment", "sun"});
         if (root.has("description") && !root["description"].value.is_string())
             root["description"].fail("must be a string");
         LoadedScene loaded;
@@ -122,9 +122,11 @@ public:
         if (integrator.light_tracing == LightTracing::on && camera.aperture > 0)
             root["integrator"]["light_tracing"].fail("\"on\" needs a pinhole camera (camera.aperture 0)");
         if (root.has("objects")) parse_objects(root["objects"]);
-        auto environment = root.has("environment") ? parse_environment(root["environment"]) : nullptr;
+        DistantLights distant;
+        if (root.has("environment")) distant.environment = parse_environment(root["environment"]);
+        if (root.has("sun")) distant.sun = parse_sun(root["sun"]);
         loaded.scene = std::make_shared<const Scene>(camera, background, integrator, std::move(surfaces_),
-                                                     std::move(environment));
+                                                     std::move(distant));
         loaded.warnings = std::move(warnings_);
         return loaded;
     }
@@ -387,6 +389,17 @@ private:
         } catch (const std::exception& e) {
             at.fail(e.what());
         }
+    }
+
+    static SunSettings parse_sun(const At& at) {
+        at.expect_object({"direction", "irradiance", "angle"});
+        if (!at.has("direction")) at.fail("needs a \"direction\" toward the sun");
+        SunSettings s;
+        const At direction = at["direction"];
+        s.direction = unit_direction(direction, direction.vec3(kMaxEmission), "must not be zero");
+        if (at.has("irradiance")) s.irradiance = at["irradiance"].colour(kMaxEmission);
+        if (at.has("angle")) s.angle = at["angle"].number_in(0, 179.999);
+        return s;
     }
 
     std::shared_ptr<const Environment> parse_environment(const At& at) {

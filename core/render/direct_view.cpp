@@ -12,6 +12,7 @@ namespace {
 bool may_see_direct_view(const Scene& scene, const Camera& camera, Filter filter) {
     if (!is_black(scene.background())) return true;
     if (scene.environment() && scene.environment()->settings().visible) return true;
+    if (scene.sun() && !scene.sun()->is_delta()) return true;
     const Geometry& geometry = scene.geometry();
     for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim) {
         const Material& m = scene.material(prim);

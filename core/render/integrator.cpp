@@ -50,7 +50,7 @@ Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const 
     if (scene_.has_textured_lights() && ls.prim != kNoPrimitive && scene_.material(ls.prim).maps != Material::kNoMaps)
         ls.emission = scene_.emission_at(si.p, ls);
     const BsdfValue f = bsdf.evaluate(-d, ls.wi);
-    Rgb value = beta * f.f_cos * ls.emission * (power_heuristic(ls.pdf, f.pdf) / ls.pdf);
+    Rgb value = beta * f.f_cos * ls.emission * ((ls.delta ? 1 : power_heuristic(ls.pdf, f.pdf)) / ls.pdf);
     if (!survives_roulette(value, kShadowRoulette, rng)) return Rgb{0};
     Ray shadow = spawn_ray(si, ls.wi);
     shadow.tmax = ls.distance;
@@ -179,14 +179,19 @@ bool PathTracer::extend_path(PathState& path, const SurfaceInteraction& si, Vert
     return true;
 }
 
+// Light tracing and the caster sampler start no path at the environment or the sun: next-event
+// estimation is the only other way to each.
 Rgb PathTracer::escaped(const PathState& path, bool nee) const {
+    const Vec3& d = path.ray.d;
+    const bool mis = nee && !path.specular;
+    const LightSet& lights = scene_.lights();
     const Environment* environment = scene_.environment();
-    if (path.seen_directly && !environment->settings().visible) return scene_.background();
-    const Rgb radiance = environment->radiance(path.ray.d);
-    // Light tracing and the caster sampler start no path at the environment: next-event
-    // estimation is the only other way here.
-    if (!nee || path.specular) return radiance;
-    return radiance * power_heuristic(path.bsdf_pdf, scene_.lights().environment_pdf(path.ray.d));
+    Rgb result = scene_.background();
+    if (environment && (environment->settings().visible || !path.seen_directly))
+        result = environment->radiance(d) * (mis ? power_heuristic(path.bsdf_pdf, lights.environment_pdf(d)) : 1);
+    if (const Sun* sun = scene_.sun(); sun && sun->pdf(d) > 0)
+        result += sun->radiance(d) * (mis ? power_heuristic(path.bsdf_pdf, lights.sun_pdf(d)) : 1);
+    return result;
 }
 
 double PathTracer::found_light_weight(const PathState& path, const SurfaceInteraction& si, bool nee) const {
@@ -241,7 +246,7 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov
         Hit hit;
         if (!scene_.geometry().intersect(ray, path.self, hit)) {
             if (path.counts_found_light())
-                result += path.throughput * (scene_.environment() ? escaped(path, nee) : scene_.background());
+                result += path.throughput * (scene_.has_distant_lights() ? escaped(path, nee) : scene_.background());
             break;
         }
         const BsdfFlags flags = scene_.flags(hit.prim);

@@ -134,8 +134,9 @@ private:
     // strategy could also have found it (mis.h): next-event estimation, a light path or the
     // CasterSampler; 1 where none could.
     double found_light_weight(const PathState& path, const SurfaceInteraction& si, bool nee) const;
-    // What a path that leaves a scene with an environment finds: the environment, weighed
-    // against next-event estimation's sampling of it, or where it is hidden the film's background.
+    // What a path that leaves a scene with an environment or a sun finds: each weighed against
+    // next-event estimation's sampling of it; the film's background where there is no
+    // environment or it is hidden.
     Rgb escaped(const PathState& path, bool nee) const;
     // The emission of the surface `hit` along `ray`, textured or not.
     Rgb emission_at(const Ray& ray, const Hit& hit) const;

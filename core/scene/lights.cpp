@@ -8,7 +8,7 @@
 namespace glint {
 
 LightSet::LightSet(const Geometry& geometry, const std::vector<Material>& materials,
-                   const std::vector<uint32_t>& material_of_prim, const Environment* environment)
+                   const std::vector<uint32_t>& material_of_prim, const Environment* environment, const Sun* sun)
     : geometry_(&geometry), light_of_prim_(geometry.primitive_count(), kNoLight) {
     std::vector<double> power;
     for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim) {
@@ -38,12 +38,18 @@ LightSet::LightSet(const Geometry& geometry, const std::vector<Material>& materi
         lights_.push_back(light);
         power.push_back(area * std::max(luminance(m.emission), 1e-300));
     }
+    // Two-sided emitters are weighed by area × radiance, their power over 2π; the environment's
+    // power through the scene's bounding sphere is π·r²·∫L dω, the sun's π·r²·irradiance.
+    const double r = environment || sun ? bounding_radius(geometry) : 0;
     if (environment && environment->luminance_integral() > 0) {
-        // Two-sided emitters are weighed by area × radiance, their power over 2π; the
-        // environment's power through the scene's bounding sphere is π·r²·∫L dω.
-        const double r = bounding_radius(geometry);
         environment_ = environment;
+        environment_index_ = power.size();
         power.push_back(0.5 * r * r * environment->luminance_integral());
+    }
+    if (sun && sun->selection_weight(r) > 0) {
+        sun_ = sun;
+        sun_index_ = power.size();
+        power.push_back(sun->selection_weight(r));
     }
     double total = 0;
     for (double p : power) cdf_.push_back(total += p);
@@ -65,6 +71,16 @@ bool LightSet::sample_environment(double u1, double u2, double share, LightSampl
     out.distance = kInfinity;
     out.emission = environment_->radiance(out.wi);
     out.prim = kNoPrimitive;
+    out.pdf = pdf * share;
+    return out.pdf > 0 && std::isfinite(out.pdf);
+}
+
+bool LightSet::sample_sun(double u1, double u2, double share, LightSample& out) const {
+    double pdf;
+    sun_->sample(u1, u2, out.wi, out.emission, pdf);
+    out.distance = kInfinity;
+    out.prim = kNoPrimitive;
+    out.delta = sun_->is_delta();
     out.pdf = pdf * share;
     return out.pdf > 0 && std::isfinite(out.pdf);
 }
@@ -135,7 +151,9 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u1, double u2, LightS
     // would hand each triangle of a quad a random half of the strata.
     const double below = index == 0 ? 0 : cdf_[index - 1], share = cdf_[index] - below;  // pick_probability
     u1 = std::clamp((u1 - below) / share, 0.0, kOneMinusEpsilon);
-    if (index == lights_.size()) return sample_environment(u1, u2, share, out);
+    if (index >= lights_.size())
+        return environment_ && index == environment_index_ ? sample_environment(u1, u2, share, out)
+                                                           : sample_sun(u1, u2, share, out);
     const Light& light = lights_[index];
     out.prim = light.prim;
     out.emission = light.emission;

@@ -5,13 +5,15 @@
 // surface; where that cap is smaller than the light's horizon, light sampling picks points on it
 // by area instead (smallpt's light: a disc of radius 18 instead of a nearly full hemisphere of
 // directions of which the ceiling hides 97%). An environment is one more light, sampled by its
-// own distribution, its power that of its radiance falling on the scene's bounding sphere.
+// own distribution, its power that of its radiance falling on the scene's bounding sphere, and
+// so is the sun, by its cone (or its one direction, a delta light).
 #pragma once
 
 #include <vector>
 
 #include "scene/environment.h"
 #include "scene/geometry.h"
+#include "scene/sun.h"
 #include "scene/material.h"
 #include "shapes/sphere_cap.h"
 
@@ -22,7 +24,8 @@ struct LightSample {
     double distance;  // along wi
     Rgb emission;
     double pdf;       // solid-angle density, including the choice of this light
-    uint32_t prim;    // kNoPrimitive: the environment (distance infinite)
+    uint32_t prim;    // kNoPrimitive: the environment or the sun (distance infinite)
+    bool delta = false;  // from a delta light, which no BSDF sample reaches: no MIS
     double b1 = 0, b2 = 0;  // on a triangle light, the point's barycentric weights of v1 and v2
 };
 
@@ -30,7 +33,8 @@ class LightSet {
 public:
     LightSet() = default;
     LightSet(const Geometry& geometry, const std::vector<Material>& materials,
-             const std::vector<uint32_t>& material_of_prim, const Environment* environment = nullptr);
+             const std::vector<uint32_t>& material_of_prim, const Environment* environment = nullptr,
+             const Sun* sun = nullptr);
 
     bool empty() const { return cdf_.empty(); }
     size_t size() const { return cdf_.size(); }
@@ -45,8 +49,10 @@ public:
     // The solid-angle density with which sample() would have produced direction d toward the
     // environment.
     double environment_pdf(const Vec3& d) const {
-        return environment_ ? environment_->pdf(d) * pick_probability(lights_.size()) : 0;
+        return environment_ ? environment_->pdf(d) * pick_probability(environment_index_) : 0;
     }
+    // The same toward the sun's disc.
+    double sun_pdf(const Vec3& d) const { return sun_ ? sun_->pdf(d) * pick_probability(sun_index_) : 0; }
 
 private:
     struct Light {
@@ -75,11 +81,15 @@ private:
     double cone_distance(const Vec3& p, uint32_t self, uint32_t prim) const;
     double pick_probability(size_t light) const;
     static double bounding_radius(const Geometry& geometry);
-    // The environment's share: its direction, radiance and density into `out`.
+    // The environment's or the sun's share: its direction, radiance and density into `out`.
     bool sample_environment(double u1, double u2, double share, LightSample& out) const;
+    bool sample_sun(double u1, double u2, double share, LightSample& out) const;
 
     const Geometry* geometry_ = nullptr;
-    const Environment* environment_ = nullptr;  // when it sheds light: the last entry of cdf_
+    // When they shed light, each an entry of cdf_ after the emitters'.
+    const Environment* environment_ = nullptr;
+    const Sun* sun_ = nullptr;
+    size_t environment_index_ = 0, sun_index_ = 0;
     std::vector<Light> lights_;
     std::vector<OccludedCap> caps_;  // each light's, smallest first
     std::vector<double> cdf_;                // cumulative power, normalised; cdf_.back() == 1

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "scene/bsdf_flags.h"
@@ -31,6 +32,12 @@ struct IntegratorSettings {
 
 // The scene's surfaces: its primitives (spheres first, then triangles, as Geometry numbers them),
 // what each is made of, and the textures its materials look up.
+// Light from far away: an environment, a sun, either or both.
+struct DistantLights {
+    std::shared_ptr<const Environment> environment;
+    std::optional<SunSettings> sun;
+};
+
 struct SceneSurfaces {
     std::vector<Sphere> spheres;
     std::vector<Triangle> triangles;
@@ -45,11 +52,10 @@ struct SceneSurfaces {
 // geometry.
 class Scene {
 public:
-    // An environment, if given, lights the scene from far away; film.background is then what
-    // only camera rays and the mirror and glass paths straight from the camera see, where it
-    // is not visible to them.
+    // With an environment, film.background is only what camera rays and the mirror and glass
+    // paths straight from the camera see where the environment is not visible to them.
     Scene(CameraSettings camera, Rgb background, IntegratorSettings integrator, SceneSurfaces surfaces,
-          std::shared_ptr<const Environment> environment = nullptr);
+          DistantLights distant = {});
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
 
@@ -59,6 +65,8 @@ public:
     const Geometry& geometry() const { return geometry_; }
     const LightSet& lights() const { return lights_; }
     const Environment* environment() const { return environment_.get(); }
+    const Sun* sun() const { return sun_ ? &*sun_ : nullptr; }
+    bool has_distant_lights() const { return environment_ || sun_; }
     // Primitive prim's material as the scene states it (a textured parameter: its scale).
     const Material& material(uint32_t prim) const { return materials_[material_of_prim_[prim]]; }
     // Its BSDF's flags, as the strategies choose by them: the same anywhere on the primitive
@@ -107,6 +115,7 @@ private:
     bool has_textured_lights_ = false;
     void map_normal(SurfaceInteraction& si) const;
     std::shared_ptr<const Environment> environment_;
+    std::optional<Sun> sun_;
     LightSet lights_;
 };
 

@@ -1,7 +1,7 @@
-// Scenes lit by an environment: the loader reads `environment` with the rules of every scene
-// file, a white furnace returns the environment's radiance everywhere whatever the rotation,
-// `visible: false` shows camera rays the film's background, and a scene without an environment
-// has a black or constant sky as before.
+// Scenes lit from far away. An environment: the loader reads `environment` with the rules of
+// every scene file, a white furnace returns the environment's radiance everywhere whatever the
+// rotation, `visible: false` shows camera rays the film's background. A sun: a facing diffuse
+// plane returns irradiance·albedo/π, the disc seen directly has irradiance/(π sin²α).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -98,6 +98,60 @@ TEST_F(SceneEnvironment, TheFingerprintCoversTheEnvironment) {
         EXPECT_NE(print(other), base) << other;
     const LoadedScene none = load("{}");
     EXPECT_NE(fingerprint(*none.scene, none.settings), base);
+}
+
+// A diffuse plane of albedo 0.6 facing the sun, seen from above, nothing else in the scene.
+Image sunlit_plane(const std::string& sun, int spp) {
+    const LoadedScene s = parse_scene(R"({"camera": {"position": [0, 5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov": 20},
+        "film": {"width": 8, "height": 8, "spp": )" + std::to_string(spp) + R"(}, "sun": )" + sun + R"(,
+        "objects": [{"type": "mesh", "vertices": [[-50, 0, -50], [50, 0, -50], [50, 0, 50], [-50, 0, 50]],
+                     "indices": [[0, 2, 1], [0, 3, 2]], "material": {"albedo": 0.6}}]})", "");
+    return testing::render(s)->film().mean();
+}
+
+TEST(SceneSun, AFacingDiffusePlaneReturnsIrradianceTimesAlbedoOverPi) {
+    // A delta sun: every sample is the exact value.
+    const Image delta = sunlit_plane(R"({"direction": [0, 1, 0], "irradiance": [3, 2, 1], "angle": 0})", 4);
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            const Rgb p = delta.at(x, y);
+            EXPECT_NEAR(p.x, 3 * 0.6 / kPi, 1e-6);
+            EXPECT_NEAR(p.z, 1 * 0.6 / kPi, 1e-6);
+        }
+    // A disc of 60°: irradiance is what the facing plane receives, ∫ L cos θ dω = L·π·sin²α,
+    // not L times the disc's solid angle (6.7% more at this size).
+    const Image disc = sunlit_plane(R"({"direction": [0, 1, 0], "irradiance": 2, "angle": 60})", 64);
+    double sum = 0;
+    for (float v : disc.rgb) sum += v;
+    EXPECT_NEAR(sum / double(disc.rgb.size()), 2 * 0.6 / kPi, 0.005 * 2 * 0.6 / kPi);
+    // Tilted by 60°, the plane receives half.
+    const Image tilted = sunlit_plane(R"({"direction": [0.8660254037844386, 0.5, 0], "irradiance": 2, "angle": 0})", 4);
+    EXPECT_NEAR(tilted.at(3, 3).y, 0.5 * 2 * 0.6 / kPi, 1e-6);
+}
+
+// Looking straight at a 10° sun: its disc's radiance is irradiance / (π sin² 5°).
+TEST(SceneSun, TheDiscSeenDirectlyHasItsRadiance) {
+    const LoadedScene s = parse_scene(R"({"camera": {"position": [0, 0, 0], "direction": [0, 0, -1], "fov": 2},
+        "film": {"width": 4, "height": 4, "spp": 4}, "sun": {"direction": [0, 0, -1], "irradiance": 2, "angle": 10}})", "");
+    const Image image = testing::render(s)->film().mean();
+    const double sin5 = std::sin(5 * kPi / 180);
+    EXPECT_NEAR(image.at(1, 1).y, 2 / (kPi * sin5 * sin5), 1e-6 * 2 / (kPi * sin5 * sin5));
+}
+
+TEST(SceneSun, BadSunsGetOneClearError) {
+    const auto error_of = [](const std::string& sun) {
+        try {
+            parse_scene(R"({"sun": )" + sun + "}", "");
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(error_of(R"({"irradiance": 2})").find("sun: needs a \"direction\""), std::string::npos);
+    EXPECT_NE(error_of(R"({"direction": [0, 0, 0]})").find("sun.direction: must not be zero"), std::string::npos);
+    EXPECT_NE(error_of(R"({"direction": [0, 1, 0], "angle": 180})").find("sun.angle"), std::string::npos);
+    EXPECT_NE(error_of(R"({"direction": [0, 1, 0], "size": 1})").find("sun.size"), std::string::npos);
+    EXPECT_NE(error_of(R"({"direction": [0, 1, 0], "irradiance": -1})").find("sun.irradiance"), std::string::npos);
 }
 
 }  // namespace

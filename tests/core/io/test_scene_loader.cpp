@@ -150,7 +150,7 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
     EXPECT_EQ(error_of(R"({"integrator": {"direct_view_rays": 65}})"), "integrator.direct_view_rays: must be in [0, 64]");
     EXPECT_EQ(error_of(R"({"objects": {}})"), "objects: must be an array");
     EXPECT_EQ(error_of(R"({"colour": 1})"),
-              "colour: unknown field (expected one of: description, camera, film, integrator, objects, environment)");
+              "colour: unknown field (expected one of: description, camera, film, integrator, objects, environment, sun)");
 }
 
 TEST(SceneLoader, MalformedAndHostileJsonIsRejectedCleanly) {
