@@ -34,8 +34,14 @@ void surface_maps(Fnv1a& h, const Scene& scene) {
     }
 }
 
-// Nothing for a scene without an environment or a sun, whose fingerprint stays what it was.
-void distant_lights(Fnv1a& h, const Scene& scene) {
+// Nothing for a scene without an environment, a sun or point lights, whose fingerprint stays
+// what it was.
+void other_lights(Fnv1a& h, const Scene& scene) {
+    for (const PointLight& p : scene.lights().point_lights()) {
+        for (const Vec3& v : {p.position, p.intensity, p.direction}) h.vec(v);
+        for (double v : {p.cos_inner, p.cos_outer}) h.value(v);
+        h.value(p.spot);
+    }
     if (const Sun* sun = scene.sun()) {
         h.vec(sun->settings().direction);
         h.vec(sun->settings().irradiance);
@@ -86,7 +92,7 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
         if (m.maps != Material::kNoMaps) h.value(m.maps);
     }
     surface_maps(h, scene);
-    distant_lights(h, scene);
+    other_lights(h, scene);
     h.value(settings.width);
     h.value(settings.height);
     h.value(settings.filter);

@@ -122,9 +122,10 @@ public:
         if (integrator.light_tracing == LightTracing::on && camera.aperture > 0)
             root["integrator"]["light_tracing"].fail("\"on\" needs a pinhole camera (camera.aperture 0)");
         if (root.has("objects")) parse_objects(root["objects"]);
-        DistantLights distant;
+        SceneLights distant;
         if (root.has("environment")) distant.environment = parse_environment(root["environment"]);
         if (root.has("sun")) distant.sun = parse_sun(root["sun"]);
+        distant.points = std::move(point_lights_);
         loaded.scene = std::make_shared<const Scene>(camera, background, integrator, std::move(surfaces_),
                                                      std::move(distant));
         loaded.warnings = std::move(warnings_);
@@ -229,9 +230,11 @@ private:
         for (size_t i = 0; i < at.value.size(); ++i) {
             const At object = at.item(i);
             if (!object.value.is_object()) object.fail("must be an object");
-            if (!object.has("type")) object.fail("needs a \"type\": \"sphere\" or \"mesh\"");
-            if (object["type"].choice({"sphere", "mesh"}) == "sphere") parse_sphere(object);
-            else parse_mesh(object);
+            if (!object.has("type")) object.fail("needs a \"type\": \"sphere\", \"mesh\", \"point_light\" or \"spot_light\"");
+            const std::string type = object["type"].choice({"sphere", "mesh", "point_light", "spot_light"});
+            if (type == "sphere") parse_sphere(object);
+            else if (type == "mesh") parse_mesh(object);
+            else point_lights_.push_back(parse_point_light(object, type == "spot_light"));
         }
         // Spheres come first in the primitive numbering (see Geometry).
         std::vector<uint32_t>& of_prim = surfaces_.material_of_prim;
@@ -389,6 +392,25 @@ private:
         } catch (const std::exception& e) {
             at.fail(e.what());
         }
+    }
+
+    PointLight parse_point_light(const At& at, bool spot) const {
+        if (spot) at.expect_object({"type", "position", "intensity", "direction", "inner_angle", "outer_angle"});
+        else at.expect_object({"type", "position", "intensity"});
+        if (!at.has("position")) at.fail("needs a \"position\"");
+        PointLight light;
+        light.position = at["position"].vec3(limits_.max_coordinate);
+        if (at.has("intensity")) light.intensity = at["intensity"].colour(kMaxEmission);
+        light.spot = spot;
+        if (!spot) return light;
+        if (at.has("direction")) light.direction = unit_direction(at["direction"], at["direction"].vec3(kMaxEmission), "must not be zero");
+        const double outer = at.has("outer_angle") ? at["outer_angle"].number_in(0, 90) : 45;
+        const double inner = at.has("inner_angle") ? at["inner_angle"].number_in(0, 90) : 0;
+        if (!(outer > 0)) at["outer_angle"].fail("must be more than 0");
+        if (!(inner < outer)) at["inner_angle"].fail("must be less than outer_angle");
+        light.cos_inner = std::cos(inner * kPi / 180);
+        light.cos_outer = std::cos(outer * kPi / 180);
+        return light;
     }
 
     static SunSettings parse_sun(const At& at) {
@@ -661,6 +683,7 @@ private:
     SceneLimits limits_;
     SceneSurfaces surfaces_;
     std::vector<uint32_t> sphere_materials_;
+    std::vector<PointLight> point_lights_;
     std::map<std::filesystem::path, std::shared_ptr<const Texture>> texture_files_;  // by resolved path
     size_t texels_ = 0;
     std::vector<std::string> warnings_;

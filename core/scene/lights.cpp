@@ -8,7 +8,7 @@
 namespace glint {
 
 LightSet::LightSet(const Geometry& geometry, const std::vector<Material>& materials,
-                   const std::vector<uint32_t>& material_of_prim, const Environment* environment, const Sun* sun)
+                   const std::vector<uint32_t>& material_of_prim, OtherLights others)
     : geometry_(&geometry), light_of_prim_(geometry.primitive_count(), kNoLight) {
     std::vector<double> power;
     for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim) {
@@ -40,6 +40,8 @@ LightSet::LightSet(const Geometry& geometry, const std::vector<Material>& materi
     }
     // Two-sided emitters are weighed by area × radiance, their power over 2π; the environment's
     // power through the scene's bounding sphere is π·r²·∫L dω, the sun's π·r²·irradiance.
+    const Environment* environment = others.environment;
+    const Sun* sun = others.sun;
     const double r = environment || sun ? bounding_radius(geometry) : 0;
     if (environment && environment->luminance_integral() > 0) {
         environment_ = environment;
@@ -50,6 +52,12 @@ LightSet::LightSet(const Geometry& geometry, const std::vector<Material>& materi
         sun_ = sun;
         sun_index_ = power.size();
         power.push_back(sun->selection_weight(r));
+    }
+    points_index_ = power.size();
+    for (const PointLight& light : others.points) {
+        if (!(light.selection_weight() > 0)) continue;
+        points_.push_back(light);
+        power.push_back(light.selection_weight());
     }
     double total = 0;
     for (double p : power) cdf_.push_back(total += p);
@@ -73,6 +81,19 @@ bool LightSet::sample_environment(double u1, double u2, double share, LightSampl
     out.prim = kNoPrimitive;
     out.pdf = pdf * share;
     return out.pdf > 0 && std::isfinite(out.pdf);
+}
+
+bool LightSet::sample_point(const Vec3& p, const PointLight& light, double share, LightSample& out) const {
+    const Vec3 to = light.position - p;
+    const double dist2 = dot(to, to);
+    if (!(dist2 > 0) || !std::isfinite(dist2)) return false;
+    out.distance = std::sqrt(dist2);
+    out.wi = to / out.distance;
+    out.emission = light.intensity_toward(-out.wi) / dist2;
+    out.prim = kNoPrimitive;
+    out.delta = true;
+    out.pdf = share;
+    return !is_black(out.emission);
 }
 
 bool LightSet::sample_sun(double u1, double u2, double share, LightSample& out) const {
@@ -151,6 +172,7 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u1, double u2, LightS
     // would hand each triangle of a quad a random half of the strata.
     const double below = index == 0 ? 0 : cdf_[index - 1], share = cdf_[index] - below;  // pick_probability
     u1 = std::clamp((u1 - below) / share, 0.0, kOneMinusEpsilon);
+    if (index >= points_index_) return sample_point(p, points_[index - points_index_], share, out);
     if (index >= lights_.size())
         return environment_ && index == environment_index_ ? sample_environment(u1, u2, share, out)
                                                            : sample_sun(u1, u2, share, out);

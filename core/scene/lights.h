@@ -13,6 +13,7 @@
 
 #include "scene/environment.h"
 #include "scene/geometry.h"
+#include "scene/point_light.h"
 #include "scene/sun.h"
 #include "scene/material.h"
 #include "shapes/sphere_cap.h"
@@ -29,14 +30,21 @@ struct LightSample {
     double b1 = 0, b2 = 0;  // on a triangle light, the point's barycentric weights of v1 and v2
 };
 
+// What lights a scene besides its emitters.
+struct OtherLights {
+    const Environment* environment = nullptr;
+    const Sun* sun = nullptr;
+    std::vector<PointLight> points;
+};
+
 class LightSet {
 public:
     LightSet() = default;
     LightSet(const Geometry& geometry, const std::vector<Material>& materials,
-             const std::vector<uint32_t>& material_of_prim, const Environment* environment = nullptr,
-             const Sun* sun = nullptr);
+             const std::vector<uint32_t>& material_of_prim, OtherLights others = {});
 
     bool empty() const { return cdf_.empty(); }
+    const std::vector<PointLight>& point_lights() const { return points_; }
     size_t size() const { return cdf_.size(); }
 
     // A light point as seen from p, which lies on primitive `self` (or kNoPrimitive); `facing`
@@ -84,12 +92,15 @@ private:
     // The environment's or the sun's share: its direction, radiance and density into `out`.
     bool sample_environment(double u1, double u2, double share, LightSample& out) const;
     bool sample_sun(double u1, double u2, double share, LightSample& out) const;
+    bool sample_point(const Vec3& p, const PointLight& light, double share, LightSample& out) const;
 
     const Geometry* geometry_ = nullptr;
     // When they shed light, each an entry of cdf_ after the emitters'.
     const Environment* environment_ = nullptr;
     const Sun* sun_ = nullptr;
     size_t environment_index_ = 0, sun_index_ = 0;
+    std::vector<PointLight> points_;
+    size_t points_index_ = 0;  // points_[i] is entry points_index_ + i of cdf_
     std::vector<Light> lights_;
     std::vector<OccludedCap> caps_;  // each light's, smallest first
     std::vector<double> cdf_;                // cumulative power, normalised; cdf_.back() == 1

@@ -45,7 +45,7 @@ void add_tangents(const Geometry& geometry, TriangleAttributes& attributes) {
 }  // namespace
 
 Scene::Scene(CameraSettings camera, Rgb background, IntegratorSettings integrator, SceneSurfaces surfaces,
-             DistantLights distant)
+             SceneLights lights)
     : camera_(camera),
       background_(background),
       integrator_(integrator),
@@ -55,9 +55,10 @@ Scene::Scene(CameraSettings camera, Rgb background, IntegratorSettings integrato
       maps_(std::move(surfaces.maps)),
       textures_(std::move(surfaces.textures)),
       has_normals_(!surfaces.attributes.normals.empty()),
-      environment_(std::move(distant.environment)),
-      sun_(distant.sun ? std::optional<Sun>(Sun(*distant.sun)) : std::nullopt),
-      lights_(geometry_, everywhere(materials_, maps_), material_of_prim_, environment_.get(), sun()) {
+      environment_(std::move(lights.environment)),
+      sun_(lights.sun ? std::optional<Sun>(Sun(*lights.sun)) : std::nullopt),
+      lights_(geometry_, everywhere(materials_, maps_), material_of_prim_,
+              {environment_.get(), sun(), std::move(lights.points)}) {
     for (const Material& m : materials_) {
         has_normal_maps_ |= has_normal_map(m, maps_);
         has_textured_lights_ |= m.maps != Material::kNoMaps && (m.is_emissive() || maps_[m.maps].has(maps_[m.maps].emission));

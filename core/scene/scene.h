@@ -32,10 +32,12 @@ struct IntegratorSettings {
 
 // The scene's surfaces: its primitives (spheres first, then triangles, as Geometry numbers them),
 // what each is made of, and the textures its materials look up.
-// Light from far away: an environment, a sun, either or both.
-struct DistantLights {
+// The lights that are not emissive surfaces: from far away an environment and a sun, and
+// point and spot lights.
+struct SceneLights {
     std::shared_ptr<const Environment> environment;
     std::optional<SunSettings> sun;
+    std::vector<PointLight> points;
 };
 
 struct SceneSurfaces {
@@ -55,7 +57,7 @@ public:
     // With an environment, film.background is only what camera rays and the mirror and glass
     // paths straight from the camera see where the environment is not visible to them.
     Scene(CameraSettings camera, Rgb background, IntegratorSettings integrator, SceneSurfaces surfaces,
-          DistantLights distant = {});
+          SceneLights lights = {});
     Scene(const Scene&) = delete;
     Scene& operator=(const Scene&) = delete;
 

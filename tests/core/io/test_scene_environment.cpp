@@ -1,7 +1,8 @@
 // Scenes lit from far away. An environment: the loader reads `environment` with the rules of
 // every scene file, a white furnace returns the environment's radiance everywhere whatever the
 // rotation, `visible: false` shows camera rays the film's background. A sun: a facing diffuse
-// plane returns irradiance·albedo/π, the disc seen directly has irradiance/(π sin²α).
+// plane returns irradiance·albedo/π, the disc seen directly has irradiance/(π sin²α). Point and
+// spot lights: the inverse-square law and glTF's cone falloff.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -152,6 +153,61 @@ TEST(SceneSun, BadSunsGetOneClearError) {
     EXPECT_NE(error_of(R"({"direction": [0, 1, 0], "angle": 180})").find("sun.angle"), std::string::npos);
     EXPECT_NE(error_of(R"({"direction": [0, 1, 0], "size": 1})").find("sun.size"), std::string::npos);
     EXPECT_NE(error_of(R"({"direction": [0, 1, 0], "irradiance": -1})").find("sun.irradiance"), std::string::npos);
+}
+
+// A diffuse plane of albedo 0.6 at y = 0 under `light` (nothing else in the scene), seen by a
+// narrow camera looking down at the point (x, 0, 0): that point's radiance.
+double lit_by(const std::string& light, double x) {
+    const LoadedScene s = parse_scene(R"({"camera": {"position": [)" + std::to_string(x) + R"(, 1, 0], "direction": [0, -1, 0], "up": [0, 0, -1], "fov": 0.01},
+        "film": {"width": 1, "height": 1, "spp": 4}, "objects": [)" + light + R"(,
+        {"type": "mesh", "vertices": [[-50, 0, -50], [50, 0, -50], [50, 0, 50], [-50, 0, 50]],
+         "indices": [[0, 2, 1], [0, 3, 2]], "material": {"albedo": 0.6}}]})", "");
+    return testing::render(s)->film().mean().at(0, 0).y;
+}
+
+TEST(ScenePointLights, APointLightFallsOffAsTheInverseSquare) {
+    // Bright enough that no shadow ray is left to roulette (integrator.h): every sample exact.
+    const std::string light = R"({"type": "point_light", "position": [0, 2, 0], "intensity": 50})";
+    EXPECT_NEAR(lit_by(light, 0), 0.6 / kPi * 50 / 4, 1e-5);
+    // At x = 2: distance² 8, cos θ at the plane 2/√8.
+    EXPECT_NEAR(lit_by(light, 2), 0.6 / kPi * 50 / 8 * (2 / std::sqrt(8.0)), 1e-5);
+}
+
+// A spot pointing down, full to 30° and dark beyond 45° off its axis: glTF's falloff between.
+TEST(ScenePointLights, ASpotLightHasGltfsConeFalloff) {
+    const std::string spot = R"({"type": "spot_light", "position": [0, 2, 0], "intensity": 50, "direction": [0, -1, 0],
+        "inner_angle": 30, "outer_angle": 45})";
+    const auto at_angle = [&](double degrees) { return lit_by(spot, 2 * std::tan(degrees * kPi / 180)); };
+    const auto point = [&](double degrees) {
+        const double c = std::cos(degrees * kPi / 180);
+        return 0.6 / kPi * 50 * c * c * c / 4;  // I·cos θ / d², d = 2 / cos θ
+    };
+    EXPECT_NEAR(at_angle(0), point(0), 1e-5);
+    EXPECT_NEAR(at_angle(20), point(20), 1e-5);
+    const double c30 = std::cos(kPi / 6), c45 = std::cos(kPi / 4), c40 = std::cos(40 * kPi / 180);
+    const double t = (c40 - c45) / (c30 - c45);
+    EXPECT_NEAR(at_angle(40), point(40) * t * t, 1e-5);
+    EXPECT_EQ(at_angle(50), 0);
+}
+
+TEST(ScenePointLights, BadPointLightsGetOneClearError) {
+    const auto error_of = [](const std::string& light) {
+        try {
+            parse_scene(R"({"objects": [)" + light + "]}", "");
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(error_of(R"({"type": "point_light"})").find("objects[0]: needs a \"position\""), std::string::npos);
+    EXPECT_NE(error_of(R"({"type": "point_light", "position": [0, 1, 0], "radius": 1})").find("objects[0].radius"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"({"type": "spot_light", "position": [0, 1, 0], "inner_angle": 50, "outer_angle": 40})")
+                  .find("objects[0].inner_angle: must be less than outer_angle"),
+              std::string::npos);
+    EXPECT_NE(error_of(R"({"type": "spot_light", "position": [0, 1, 0], "direction": [0, 0, 0]})")
+                  .find("objects[0].direction: must not be zero"),
+              std::string::npos);
 }
 
 }  // namespace

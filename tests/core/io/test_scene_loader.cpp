@@ -142,7 +142,7 @@ TEST(SceneLoader, ErrorsNameTheJsonPath) {
     EXPECT_EQ(error_of(R"({"camera": {"direction": [1e-200, -1e-200, 0]}})"), "no error");  // tiny, not zero
     EXPECT_EQ(error_of(R"({"camera": {"direction": [0, 1, 0]}})"), "camera: up must not be parallel to the view direction");
     EXPECT_EQ(error_of(R"({"camera": {"fov": 180}})"), "camera.fov: must be in (0, 180) degrees");
-    EXPECT_EQ(error_of(R"({"objects": [{"type": "cone"}]})"), R"(objects[0].type: must be one of "sphere", "mesh" (got "cone"))");
+    EXPECT_EQ(error_of(R"({"objects": [{"type": "cone"}]})"), R"(objects[0].type: must be one of "sphere", "mesh", "point_light", "spot_light" (got "cone"))");
     EXPECT_EQ(error_of(R"({"film": {"sampler": "halton"}})"),
               R"(film.sampler: must be one of "sobol", "independent" (got "halton"))");
     EXPECT_EQ(error_of(R"({"objects": [{"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "indices": [[0, 1, 3]]}]})"),
