@@ -101,6 +101,16 @@ TEST_F(SceneEnvironment, TheFingerprintCoversTheEnvironment) {
     EXPECT_NE(fingerprint(*none.scene, none.settings), base);
 }
 
+// The loader's message for a scene that names no files, or "no error".
+std::string error_in(const std::string& text) {
+    try {
+        parse_scene(text, "");
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
 // A diffuse plane of albedo 0.6 facing the sun, seen from above, nothing else in the scene.
 Image sunlit_plane(const std::string& sun, int spp) {
     const LoadedScene s = parse_scene(R"({"camera": {"position": [0, 5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "fov": 20},
@@ -140,14 +150,7 @@ TEST(SceneSun, TheDiscSeenDirectlyHasItsRadiance) {
 }
 
 TEST(SceneSun, BadSunsGetOneClearError) {
-    const auto error_of = [](const std::string& sun) {
-        try {
-            parse_scene(R"({"sun": )" + sun + "}", "");
-        } catch (const SceneError& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
+    const auto error_of = [](const std::string& sun) { return error_in(R"({"sun": )" + sun + "}"); };
     EXPECT_NE(error_of(R"({"irradiance": 2})").find("sun: needs a \"direction\""), std::string::npos);
     EXPECT_NE(error_of(R"({"direction": [0, 0, 0]})").find("sun.direction: must not be zero"), std::string::npos);
     EXPECT_NE(error_of(R"({"direction": [0, 1, 0], "angle": 180})").find("sun.angle"), std::string::npos);
@@ -191,14 +194,7 @@ TEST(ScenePointLights, ASpotLightHasGltfsConeFalloff) {
 }
 
 TEST(ScenePointLights, BadPointLightsGetOneClearError) {
-    const auto error_of = [](const std::string& light) {
-        try {
-            parse_scene(R"({"objects": [)" + light + "]}", "");
-        } catch (const SceneError& e) {
-            return std::string(e.what());
-        }
-        return std::string("no error");
-    };
+    const auto error_of = [](const std::string& light) { return error_in(R"({"objects": [)" + light + "]}"); };
     EXPECT_NE(error_of(R"({"type": "point_light"})").find("objects[0]: needs a \"position\""), std::string::npos);
     EXPECT_NE(error_of(R"({"type": "point_light", "position": [0, 1, 0], "radius": 1})").find("objects[0].radius"),
               std::string::npos);
