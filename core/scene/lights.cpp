@@ -83,6 +83,12 @@ bool LightSet::sample_environment(double u1, double u2, double share, LightSampl
     return out.pdf > 0 && std::isfinite(out.pdf);
 }
 
+bool LightSet::sample_other(const Vec3& p, size_t index, double u1, double u2, double share, LightSample& out) const {
+    if (index >= points_index_) return sample_point(p, points_[index - points_index_], share, out);
+    if (environment_ && index == environment_index_) return sample_environment(u1, u2, share, out);
+    return sample_sun(u1, u2, share, out);
+}
+
 bool LightSet::sample_point(const Vec3& p, const PointLight& light, double share, LightSample& out) const {
     const Vec3 to = light.position - p;
     const double dist2 = dot(to, to);
@@ -172,10 +178,7 @@ bool LightSet::sample(const Vec3& p, uint32_t self, double u1, double u2, LightS
     // would hand each triangle of a quad a random half of the strata.
     const double below = index == 0 ? 0 : cdf_[index - 1], share = cdf_[index] - below;  // pick_probability
     u1 = std::clamp((u1 - below) / share, 0.0, kOneMinusEpsilon);
-    if (index >= points_index_) return sample_point(p, points_[index - points_index_], share, out);
-    if (index >= lights_.size())
-        return environment_ && index == environment_index_ ? sample_environment(u1, u2, share, out)
-                                                           : sample_sun(u1, u2, share, out);
+    if (index >= lights_.size()) return sample_other(p, index, u1, u2, share, out);
     const Light& light = lights_[index];
     out.prim = light.prim;
     out.emission = light.emission;

@@ -89,6 +89,9 @@ private:
     double cone_distance(const Vec3& p, uint32_t self, uint32_t prim) const;
     double pick_probability(size_t light) const;
     static double bounding_radius(const Geometry& geometry);
+    // Entry `index` of cdf_, one of the lights that are not emitters, sampled from p.
+    [[gnu::noinline]] bool sample_other(const Vec3& p, size_t index, double u1, double u2, double share,
+                                        LightSample& out) const;
     // The environment's or the sun's share: its direction, radiance and density into `out`.
     bool sample_environment(double u1, double u2, double share, LightSample& out) const;
     bool sample_sun(double u1, double u2, double share, LightSample& out) const;
