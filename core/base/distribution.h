@@ -34,6 +34,7 @@ public:
         return cell;
     }
     double pdf(size_t cell) const { return (cdf_[cell + 1] - cdf_[cell]) * double(size()); }
+    size_t memory_bytes() const { return sizeof(*this) + cdf_.capacity() * sizeof(double); }
 
 private:
     static constexpr double kBelowOne = 0x1.fffffffffffffp-1;
@@ -64,6 +65,11 @@ public:
     }
     // The density over [0, 1)² in the cell: its probability times the number of cells.
     double pdf(size_t column, size_t row) const { return marginal_.pdf(row) * rows_[row].pdf(column); }
+    size_t memory_bytes() const {
+        size_t bytes = marginal_.memory_bytes();
+        for (const Distribution1D& row : rows_) bytes += row.memory_bytes();
+        return bytes;
+    }
 
 private:
     std::vector<Distribution1D> rows_;

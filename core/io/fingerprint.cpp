@@ -49,8 +49,8 @@ void other_lights(Fnv1a& h, const Scene& scene) {
     }
     const Environment* env = scene.environment();
     if (!env) return;
-    for (int v : {env->width(), env->height()}) h.value(v);
-    h.bytes(env->texels().data(), env->texels().size_bytes());
+    for (int v : {env->map().width(), env->map().height()}) h.value(v);
+    h.bytes(env->map().texels().data(), env->map().texels().size_bytes());
     h.value(env->settings().strength);
     h.value(env->settings().rotation);
     h.value(env->settings().visible);

@@ -107,7 +107,8 @@ Vec3 unit_direction(const At& at, const Vec3& v, const char* what) {
 
 class SceneParser {
 public:
-    SceneParser(const std::filesystem::path& folder, const SceneLimits& limits) : folder_(folder), limits_(limits) {}
+    SceneParser(const std::filesystem::path& folder, const SceneLimits& limits, AssetCache* assets)
+        : folder_(folder), limits_(limits), assets_(assets) {}
 
     LoadedScene parse(const At& root) {
         root.expect_object({"description", "camera", "film", "integrator", "objects", "environment", "sun"});
@@ -369,29 +370,49 @@ private:
     // The texture file at `full`, which the scene names `name` at `at`.
     const Texture* load_texture(const At& at, const std::filesystem::path& full, const std::string& name) {
         if (const auto known = texture_files_.find(full); known != texture_files_.end()) return known->second.get();
-        auto texture = std::make_shared<const Texture>(decode_image(at, full, name));
+        auto texture = std::static_pointer_cast<const Texture>(image_asset(at, full, name, AssetKind::texture).value);
         texture_files_.emplace(full, texture);
         surfaces_.textures.push_back(texture);
         return texture.get();
     }
 
-    // The image file at `full`, counted against the scene's texel limits, its negative values
-    // set to 0 with a warning.
-    Texture decode_image(const At& at, const std::filesystem::path& full, const std::string& name) {
+    // The image file at `full` made an asset of `kind` (decoded, or found in the service's
+    // cache), counted against the scene's texel limits, its negative values set to 0 with a
+    // warning.
+    Asset image_asset(const At& at, const std::filesystem::path& full, const std::string& name, AssetKind kind) {
+        const TextureLimits per_file{limits_.max_texels_per_file};
+        const auto make = [&] {
+            DecodedTexture decoded = decode_texture(read_file(full.string(), limits_.max_file_bytes), name, per_file);
+            return as_asset(std::move(decoded), kind);
+        };
         try {
-            DecodedTexture decoded = decode_texture(read_file(full.string(), limits_.max_file_bytes), name,
-                                                    TextureLimits{limits_.max_texels_per_file});
-            texels_ += size_t(decoded.texture.width()) * size_t(decoded.texture.height());
+            const Asset asset = assets_ ? assets_->get(kind, full, make) : make();
+            check_texture_size(name, asset.width, asset.height, per_file);
+            texels_ += size_t(asset.width) * size_t(asset.height);
             if (texels_ > limits_.max_texels)
                 at.fail("the scene's textures would hold more than " + std::to_string(limits_.max_texels) + " texels");
-            if (decoded.negative_values > 0)
-                warnings_.push_back(at.path + ": " + std::to_string(decoded.negative_values) + " negative values in " + name + " set to 0");
-            return std::move(decoded.texture);
+            if (asset.negative_values > 0)
+                warnings_.push_back(at.path + ": " + std::to_string(asset.negative_values) + " negative values in " + name + " set to 0");
+            return asset;
         } catch (const SceneError&) {
             throw;
         } catch (const std::exception& e) {
             at.fail(e.what());
         }
+    }
+
+    static Asset as_asset(DecodedTexture decoded, AssetKind kind) {
+        Asset asset{nullptr, decoded.texture.width(), decoded.texture.height(), decoded.negative_values, 0};
+        if (kind == AssetKind::texture) {
+            auto texture = std::make_shared<const Texture>(std::move(decoded.texture));
+            asset.bytes = texture->memory_bytes();
+            asset.value = std::move(texture);
+        } else {
+            auto map = std::make_shared<const EnvironmentMap>(EnvironmentMap::from_texture(decoded.texture));
+            asset.bytes = map->memory_bytes();
+            asset.value = std::move(map);
+        }
+        return asset;
     }
 
     PointLight parse_point_light(const At& at, bool spot) const {
@@ -432,8 +453,8 @@ private:
         if (at.has("rotation")) s.rotation = at["rotation"].number_in(-3600, 3600);
         if (at.has("visible")) s.visible = at["visible"].boolean();
         const At file = at["file"];
-        const Texture image = decode_image(file, scene_file(file), file.value.get<std::string>());
-        return std::make_shared<const Environment>(Environment::from_texture(image, s));
+        const Asset map = image_asset(file, scene_file(file), file.value.get<std::string>(), AssetKind::environment);
+        return std::make_shared<const Environment>(std::static_pointer_cast<const EnvironmentMap>(map.value), s);
     }
 
     // at[key], which the material's type must have (else `message` at its path).
@@ -681,6 +702,7 @@ private:
 
     std::filesystem::path folder_;
     SceneLimits limits_;
+    AssetCache* assets_;
     SceneSurfaces surfaces_;
     std::vector<uint32_t> sphere_materials_;
     std::vector<PointLight> point_lights_;
@@ -691,21 +713,24 @@ private:
 
 }  // namespace
 
-LoadedScene parse_scene(const std::string& json_text, const std::filesystem::path& folder, const SceneLimits& limits) {
+LoadedScene parse_scene(const std::string& json_text, const std::filesystem::path& folder, const SceneLimits& limits,
+                        AssetCache* assets) {
     json root;
     try {
         root = parse_json_text(json_text);
     } catch (const JsonTextError& e) {
         throw SceneError("", e.what(), true);
     }
-    return scene_from_json(root, folder, limits);
+    return scene_from_json(root, folder, limits, assets);
 }
 
-LoadedScene scene_from_json(const nlohmann::json& root, const std::filesystem::path& folder, const SceneLimits& limits) {
-    return SceneParser(folder, limits).parse(At{root, ""});
+LoadedScene scene_from_json(const nlohmann::json& root, const std::filesystem::path& folder, const SceneLimits& limits,
+                            AssetCache* assets) {
+    return SceneParser(folder, limits, assets).parse(At{root, ""});
 }
 
-LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& limits, const std::filesystem::path& folder) {
+LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& limits, const std::filesystem::path& folder,
+                       AssetCache* assets) {
     std::vector<uint8_t> bytes;
     try {
         bytes = read_file(file.string(), limits.max_file_bytes);
@@ -713,7 +738,7 @@ LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& lim
         throw SceneError("", e.what());
     }
     const auto own = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
-    return parse_scene(std::string(bytes.begin(), bytes.end()), folder.empty() ? own : folder, limits);
+    return parse_scene(std::string(bytes.begin(), bytes.end()), folder.empty() ? own : folder, limits, assets);
 }
 
 }  // namespace glint

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "io/asset_cache.h"
 #include "io/film_overrides.h"
 #include "io/scene_limits.h"
 #include "render/settings.h"
@@ -26,14 +27,15 @@ struct LoadedScene {
 
 // `folder` is where mesh files are looked up; file references outside it are refused, and
 // with an empty folder every file reference is refused. Text that is not JSON (io/json_text.h)
-// is a SceneError with malformed() set.
+// is a SceneError with malformed() set. With `assets`, texture and environment files are taken
+// from that cache, and what is decoded is kept there.
 LoadedScene parse_scene(const std::string& json_text, const std::filesystem::path& folder,
-                        const SceneLimits& limits = {});
+                        const SceneLimits& limits = {}, AssetCache* assets = nullptr);
 // The same, from JSON parsed already (a request body, parsed to see whether it names a preset).
 LoadedScene scene_from_json(const nlohmann::json& root, const std::filesystem::path& folder,
-                            const SceneLimits& limits = {});
+                            const SceneLimits& limits = {}, AssetCache* assets = nullptr);
 // Mesh files are looked up in `folder`, or the scene file's own folder when it is empty.
 LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& limits = {},
-                       const std::filesystem::path& folder = {});
+                       const std::filesystem::path& folder = {}, AssetCache* assets = nullptr);
 
 }  // namespace glint

@@ -23,14 +23,6 @@ namespace {
     throw TextureError("texture '" + name + "' " + what);
 }
 
-// Called with the header's size, before the texels are allocated.
-void check_texels(const std::string& name, int64_t width, int64_t height, const TextureLimits& limits) {
-    if (width < 1 || height < 1) fail(name, "has no texels");
-    if (width > INT_MAX || height > INT_MAX || uint64_t(width) * uint64_t(height) > limits.max_texels_per_file)
-        fail(name, "is " + std::to_string(width) + "x" + std::to_string(height) + " texels, more than the " +
-                       std::to_string(limits.max_texels_per_file) + " a texture may have");
-}
-
 // A NaN or infinity would spread through every path that meets it, so it is refused; negative
 // values (lossy EXR compression undershoots near black) become 0 and are counted.
 size_t clean_floats(std::vector<float>& values, const std::string& name) {
@@ -74,7 +66,7 @@ DecodedTexture decode_stb(const std::vector<uint8_t>& bytes, const std::string& 
     int width = 0, height = 0, channels = 0;
     if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels))
         fail(name, "is not an image glint reads (" + stb_reason() + ")");
-    check_texels(name, width, height, limits);
+    check_texture_size(name, width, height, limits);
     if (stbi_is_hdr_from_memory(bytes.data(), int(bytes.size()))) {
         std::vector<float> texels = stb_texels<float>(stbi_loadf_from_memory, bytes, name, width, height, channels);
         const size_t negative = clean_floats(texels, name);
@@ -257,7 +249,7 @@ DecodedTexture read_exr(Imf::InputFile& file, const ExrLayout& layout, const std
 
 DecodedTexture decode_exr(const std::vector<uint8_t>& bytes, const std::string& name, const TextureLimits& limits) {
     const ExrLayout layout = scan_exr_header(bytes, name);
-    check_texels(name, layout.width, layout.height, limits);
+    check_texture_size(name, layout.width, layout.height, limits);
     check_reader_memory(layout, name, limits);
     try {
         MemoryInput stream(bytes);
@@ -271,6 +263,14 @@ DecodedTexture decode_exr(const std::vector<uint8_t>& bytes, const std::string& 
 }
 
 }  // namespace
+
+// Called with the header's size, before the texels are allocated.
+void check_texture_size(const std::string& name, int64_t width, int64_t height, const TextureLimits& limits) {
+    if (width < 1 || height < 1) fail(name, "has no texels");
+    if (width > INT_MAX || height > INT_MAX || uint64_t(width) * uint64_t(height) > limits.max_texels_per_file)
+        fail(name, "is " + std::to_string(width) + "x" + std::to_string(height) + " texels, more than the " +
+                       std::to_string(limits.max_texels_per_file) + " a texture may have");
+}
 
 DecodedTexture decode_texture(const std::vector<uint8_t>& bytes, const std::string& name, const TextureLimits& limits) {
     if (bytes.empty()) fail(name, "is empty");

@@ -32,6 +32,10 @@ struct DecodedTexture {
     size_t negative_values = 0;
 };
 
+// Throws TextureError, naming the file by `name`, if an image of width × height texels is more
+// than `limits` allow.
+void check_texture_size(const std::string& name, int64_t width, int64_t height, const TextureLimits& limits);
+
 // The texture in `bytes`, rows top first as the file stores them. 16-bit PNGs are read as 8-bit
 // (stb_image rounds them), so their colour space stays a lookup's choice. From an EXR file it
 // reads the data window's R, G, B (a missing one is 0) and A, or else Y and A: 3, 4, 1 or 2

@@ -66,6 +66,9 @@ std::function<int()> add_serve_command(CLI::App& app) {
     in_range(cmd->add_option("--store-limit", o->service.store.limit_bytes,
                              "Bytes the store may hold; the oldest finished jobs are evicted beyond (default 2 GiB)"),
              integers(1, INT64_MAX));
+    in_range(cmd->add_option("--asset-cache", o->service.asset_cache_bytes,
+                             "Bytes of decoded textures and environments kept between jobs (default 1 GiB)"),
+             integers(0, INT64_MAX));
     CLI::Option* farm_dir =
         cmd->add_option("--farm-dir", o->service.farm.dir, "Folder for the parts, on a filesystem every node sees");
     cmd->add_option_function<std::string>(

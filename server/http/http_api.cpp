@@ -47,10 +47,11 @@ std::string reason(int status) {
 
 }  // namespace
 
-HttpApi::HttpApi(JobManager& jobs, ThreadPool& pool, const ServiceConfig& service,
+HttpApi::HttpApi(JobManager& jobs, ThreadPool& pool, AssetCache& assets, const ServiceConfig& service,
                  HttpConfig config)
     : jobs_(jobs),
       pool_(pool),
+      assets_(assets),
       scenes_(service.scenes),
       scene_limits_(service.scene),
       config_(std::move(config)) {}
@@ -64,7 +65,7 @@ std::shared_ptr<Job> HttpApi::job_or_404(const httplib::Request& req, httplib::R
 // Parses and queues the job a request describes, or answers with the error and returns null.
 std::shared_ptr<Job> HttpApi::accept(const httplib::Request& req, httplib::Response& res) {
     try {
-        const JobRequest request = parse_job_request(req.body, scenes_, scene_limits_);
+        const JobRequest request = parse_job_request(req.body, scenes_, scene_limits_, &assets_);
         return jobs_.submit(request.scene, req.body, request.priority);
     } catch (const ServiceError& e) {
         send_error(res, e);

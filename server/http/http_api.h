@@ -19,7 +19,8 @@ namespace glint {
 class HttpApi {
 public:
     // `service` for the scenes folder and what one job may ask for.
-    HttpApi(JobManager& jobs, ThreadPool& pool, const ServiceConfig& service, HttpConfig config);
+    // `assets`: the server's cache of decoded files, shared by every request.
+    HttpApi(JobManager& jobs, ThreadPool& pool, AssetCache& assets, const ServiceConfig& service, HttpConfig config);
     // Installs routes, limits, timeouts, JSON error bodies and request logging on `server`.
     void install(httplib::Server& server);
     // Makes open streams send their closing parts and end, so the server can stop.
@@ -44,6 +45,7 @@ private:
 
     JobManager& jobs_;
     ThreadPool& pool_;
+    AssetCache& assets_;
     std::filesystem::path scenes_;
     SceneLimits scene_limits_;
     HttpConfig config_;

@@ -119,12 +119,12 @@ FilmOverrides overrides_of(const nlohmann::json& request, const SceneLimits& lim
 
 // {"preset": NAME, "width": W, ...}: every override optional.
 LoadedScene parse_preset_request(const nlohmann::json& request, const std::filesystem::path& scenes,
-                                 const SceneLimits& limits) {
+                                 const SceneLimits& limits, AssetCache* assets) {
     check_preset_fields(request);
     if (!request.at("preset").is_string()) throw InvalidRequest("must be a preset name", "preset");
     const std::filesystem::path file = preset_path(scenes, request.at("preset").get<std::string>());
     if (file.empty()) throw NotFound("no such preset (see GET /presets)", "preset");
-    LoadedScene scene = load_checked([&] { return load_scene(file, limits); });
+    LoadedScene scene = load_checked([&] { return load_scene(file, limits, {}, assets); });
     const FilmOverrides overrides = overrides_of(request, limits);
     try {
         apply_film_overrides(overrides, scene.settings, limits);
@@ -170,14 +170,15 @@ nlohmann::json parse_request_json(const std::string& body) {
     }
 }
 
-JobRequest parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits) {
+JobRequest parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits,
+                             AssetCache* assets) {
     nlohmann::json request = parse_request_json(body);
     // Both paths end with check_settings(): scene_from_json's own, or apply_film_overrides'.
     const int priority = priority_of(request);
     if (request.is_object() && request.contains("preset"))
-        return {parse_preset_request(request, scenes, limits), priority};
+        return {parse_preset_request(request, scenes, limits, assets), priority};
     if (request.is_object()) request.erase("priority");  // the job's, not the scene's
-    return {load_checked([&] { return scene_from_json(request, scenes, limits); }), priority};
+    return {load_checked([&] { return scene_from_json(request, scenes, limits, assets); }), priority};
 }
 
 nlohmann::json list_presets(const std::filesystem::path& scenes) {

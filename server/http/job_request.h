@@ -28,7 +28,8 @@ struct JobRequest {
 int priority_in(const nlohmann::json& value);
 
 // Throws MalformedRequest, InvalidRequest or NotFound (an unknown preset).
-JobRequest parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits);
+JobRequest parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits,
+                             AssetCache* assets = nullptr);
 
 // The scenes folder's *.json files, by name (file stem), with their descriptions and film sizes.
 nlohmann::json list_presets(const std::filesystem::path& scenes);

@@ -11,15 +11,16 @@ namespace glint {
 
 RenderServer::RenderServer(const ServiceConfig& service, const HttpConfig& http)
     : pool_(service.threads),
+      assets_(service.asset_cache_bytes),
       jobs_(pool_, service),
-      api_(jobs_, pool_, service, http),
+      api_(jobs_, pool_, assets_, service, http),
       server_(http.request_timeout) {
     if (http.token.empty() && !is_loopback_host(http.host))
         throw std::runtime_error(
             "refusing to listen on " + http.host +
             " without a token: anyone who reaches it could run jobs; set --token or GLINT_TOKEN");
     jobs_.restore([&](const std::string& request) {
-        return parse_job_request(request, service.scenes, service.scene).scene;
+        return parse_job_request(request, service.scenes, service.scene, &assets_).scene;
     });
     // HTTP work gets its own threads, many of them: each open stream holds one (cpp-httplib is
     // blocking), and rendering never runs on them.

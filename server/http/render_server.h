@@ -26,6 +26,7 @@ private:
     void listen(const HttpConfig& http);
 
     ThreadPool pool_;
+    AssetCache assets_;  // decoded files, shared by the jobs that use them
     JobManager jobs_;
     HttpApi api_;
     GuardedServer server_;

@@ -22,7 +22,7 @@ Environment numbered(int width, int height, EnvironmentSettings settings = {}) {
     std::vector<float> rgb;
     for (int j = 0; j < height; ++j)
         for (int i = 0; i < width; ++i) rgb.insert(rgb.end(), {float(i), float(j), float(1 + i + width * j)});
-    return Environment(width, height, std::move(rgb), settings);
+    return Environment(std::make_shared<const EnvironmentMap>(width, height, std::move(rgb)), settings);
 }
 
 void expect_rgb(const Rgb& got, const Rgb& want) {
@@ -72,7 +72,7 @@ Environment lopsided(int width, int height) {
     for (int c = 0; c < 3; ++c) rgb[(size_t(height - 1) * width) * 3 + c] = 0;  // a black texel
     EnvironmentSettings s;
     s.rotation = 33;
-    return Environment(width, height, std::move(rgb), s);
+    return Environment(std::make_shared<const EnvironmentMap>(width, height, std::move(rgb)), s);
 }
 
 TEST(Environment, SampleReportsPdfsDensityWhichIntegratesToOne) {
@@ -134,7 +134,7 @@ TEST(Environment, SamplesFallInEachCellAsTheDensitySays) {
 }
 
 TEST(Environment, ABlackEnvironmentSamplesNothing) {
-    const Environment env(4, 2, std::vector<float>(4 * 2 * 3, 0.0f), {});
+    const Environment env(std::make_shared<const EnvironmentMap>(4, 2, std::vector<float>(4 * 2 * 3, 0.0f)), {});
     Vec3 d;
     double pdf;
     EXPECT_FALSE(env.sample(0.3, 0.6, d, pdf));
@@ -143,8 +143,9 @@ TEST(Environment, ABlackEnvironmentSamplesNothing) {
 }
 
 TEST(Environment, RefusesAnImageOfTheWrongSize) {
-    EXPECT_THROW(Environment(4, 2, std::vector<float>(5), {}), std::invalid_argument);
-    EXPECT_THROW(Environment(0, 2, {}, {}), std::invalid_argument);
+    EXPECT_THROW(EnvironmentMap(4, 2, std::vector<float>(5)), std::invalid_argument);
+    EXPECT_THROW(EnvironmentMap(0, 2, {}), std::invalid_argument);
+    EXPECT_THROW(Environment(nullptr, {}), std::invalid_argument);
 }
 
 }  // namespace
