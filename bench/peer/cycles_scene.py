@@ -644,6 +644,62 @@ def configure(scene, width, height, background):
     scene.render.image_settings.color_depth = "32"
 
 
+def environment_image(path):
+    """The equirectangular file as glint reads it: linear floats, negative values (lossy EXR's
+    undershoot) set to 0, handed to Cycles as an image in memory."""
+    loaded = bpy.data.images.load(path)
+    w, h = loaded.size
+    rgba = np.empty(w * h * 4, np.float32)
+    loaded.pixels.foreach_get(rgba)
+    bpy.data.images.remove(loaded)
+    rgba = rgba.reshape(h, w, 4)
+    rgba[:, :, :3] = np.maximum(rgba[:, :, :3], 0)
+    rgba[:, :, 3] = 1
+    image = bpy.data.images.new(os.path.basename(path), w, h, alpha=True, float_buffer=True)
+    image.colorspace_settings.name = "Linear"
+    image.pixels.foreach_set(rgba.ravel())
+    return image
+
+
+def add_environment(world, env, folder):
+    """glint's environment as Cycles' Environment Texture (Linear, equirectangular) in the world.
+    glint's direction d (y up) sees u = 1/2 + (atan2(d.z, d.x) + rotation)/2π; Blender's D = (d.x,
+    -d.z, d.y) sees u = 1/2 - atan2(D.y, D.x)/2π: the same texel once a Mapping node turns D by
+    -rotation about z. The importance map stays Cycles' default (background MIS on, automatic
+    resolution)."""
+    if not env.get("visible", True):
+        fail("environment.visible false is not translated")
+    nodes, links = world.node_tree.nodes, world.node_tree.links
+    texture = nodes.new("ShaderNodeTexEnvironment")
+    texture.image = environment_image(os.path.join(folder, env["file"]))
+    texture.interpolation = "Linear"
+    texture.projection = "EQUIRECTANGULAR"
+    mapping = nodes.new("ShaderNodeMapping")
+    mapping.vector_type = "VECTOR"
+    mapping.inputs["Rotation"].default_value = (0, 0, -math.radians(env.get("rotation", 0)))
+    links.new(nodes.new("ShaderNodeTexCoord").outputs["Generated"], mapping.inputs["Vector"])
+    links.new(mapping.outputs["Vector"], texture.inputs["Vector"])
+    background = nodes["Background"]
+    links.new(texture.outputs["Color"], background.inputs["Color"])
+    background.inputs["Strength"].default_value = env.get("strength", 1)
+
+
+def add_sun(sun):
+    """glint's sun as a Sun lamp: Strength is the irradiance (its largest component, the colour
+    the rest), Angle the angular diameter, shining along -direction."""
+    irradiance = colour(sun.get("irradiance", 1))
+    strength = max(irradiance)
+    data = bpy.data.lights.new("sun", "SUN")
+    data.energy = strength
+    data.color = [c / strength for c in irradiance] if strength > 0 else (1, 1, 1)
+    data.angle = math.radians(sun.get("angle", 0.526))
+    lamp = bpy.data.objects.new("sun", data)
+    toward = np.array(to_blender(sun["direction"]), float)
+    from mathutils import Vector
+    lamp.rotation_euler = Vector(toward).to_track_quat("Z", "Y").to_euler()  # local +z toward the sun
+    bpy.context.scene.collection.objects.link(lamp)
+
+
 def write_pfm(path, exr):
     image = bpy.data.images.load(exr)
     w, h = image.size
@@ -675,6 +731,10 @@ def main():
     for i, obj in enumerate(glint_scene.get("objects", [])):
         add_mesh(i, obj, os.path.dirname(os.path.abspath(a.scene)), a.bsdf_only)
     add_camera(glint_scene.get("camera", {}))
+    if "environment" in glint_scene:
+        add_environment(scene.world, glint_scene["environment"], os.path.dirname(os.path.abspath(a.scene)))
+    if "sun" in glint_scene:
+        add_sun(glint_scene["sun"])
     imported = time.perf_counter() - imported
     with open(a.out + ".jsonl", "a") as log:
         for spp in [int(s) for s in a.spp.split(",")]:

@@ -58,6 +58,12 @@ def mesh_scenes():
     return names
 
 
+ENVIRONMENT_EDITS = ({0: {"type": "diffuse", "albedo": 0.45},
+                      1: {"type": "mirror", "albedo": [0.95, 0.64, 0.37], "roughness": 0.2},
+                      2: {"type": "diffuse", "albedo": [0.7, 0.08, 0.05]},
+                      3: {"type": "mirror", "albedo": 0.9}},
+                     {2: {"as_mesh": 4}, 3: {"as_mesh": 4}, 4: {"as_mesh": 4}})
+
 # Variants of the scenes: a base scene, the materials that replace its objects' (`material`), and
 # optionally edits of its objects (fields set, None: removed; `as_mesh`: a sphere made an
 # icosphere of that many subdivisions, its material and emission kept).
@@ -84,6 +90,12 @@ VARIANTS = {
                           "tiles": {"type": "mirror", "albedo": {"texture": "textured/tiles.png"},
                                     "roughness": {"texture": "textured/tiles_rough.png"}}}},
         1: {"as_mesh": 3}}),
+    # The environment-lit scenes as Cycles 3.4 can hold them: the plastic floor and red ball
+    # diffuse, the rough gold metal a rough mirror (Glossy GGX) of its colour, the silver metal
+    # a smooth mirror; the spheres icospheres of 5,120 triangles, glass ball included. The
+    # courtyard's sky, rotated, and the sun are the scenes' own.
+    "environment_cycles": ("environment", *ENVIRONMENT_EDITS),
+    "environment_sun_cycles": ("environment_sun", *ENVIRONMENT_EDITS),
 }
 
 
