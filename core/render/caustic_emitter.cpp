@@ -10,6 +10,11 @@ namespace {
 
 bool transmits(const Scene& scene, uint32_t prim) { return scene.flags(prim).has(BsdfFlags::transmission); }
 
+// The spheres light tracing aims at: mirror and glass ones that emit nothing.
+bool aimed_at(const Scene& scene, uint32_t prim) {
+    return scene.flags(prim).is_specular() && !scene.material(prim).is_emissive();
+}
+
 }  // namespace
 
 SphereCap CausticEmitter::cap_for(const Scene& scene, uint32_t light_prim, uint32_t target_prim) {
@@ -31,17 +36,25 @@ SphereCap CausticEmitter::cap_for(const Scene& scene, uint32_t light_prim, uint3
     return best;
 }
 
-CausticEmitter::CausticEmitter(const Scene& scene) : geometry_(&scene.geometry()) {
-    const Geometry& geometry = scene.geometry();
+CausticEmitter::CausticEmitter(const Scene& scene) : geometry_(&scene.geometry()), sun_(scene.sun()) {
     std::vector<double> flux;
+    add_sphere_light_pairs(scene, flux);
+    add_sun_pairs(scene, flux);
+    double total = 0;
+    for (double f : flux) cdf_.push_back(total += f);
+    for (double& c : cdf_) c /= total;
+    if (!cdf_.empty()) cdf_.back() = 1;
+}
+
+void CausticEmitter::add_sphere_light_pairs(const Scene& scene, std::vector<double>& flux) {
+    const Geometry& geometry = scene.geometry();
     for (uint32_t light = 0; light < geometry.sphere_count(); ++light) {
         const Material& lm = scene.material(light);
         // A textured light's emission varies over it: left to the path tracer.
         if (!lm.is_emissive() || lm.maps != Material::kNoMaps) continue;
         const Sphere& ls = geometry.sphere(light);
         for (uint32_t target = 0; target < geometry.sphere_count(); ++target) {
-            const Material& tm = scene.material(target);
-            if (!scene.flags(target).is_specular() || tm.is_emissive()) continue;
+            if (!aimed_at(scene, target)) continue;
             const Sphere& ts = geometry.sphere(target);
             const double dist = length(ts.centre - ls.centre);
             if (!(dist > ls.radius + ts.radius)) continue;  // overlapping: leave to the path tracer
@@ -52,10 +65,44 @@ CausticEmitter::CausticEmitter(const Scene& scene) : geometry_(&scene.geometry()
             flux.push_back(luminance(lm.emission) * cap.area(ls) * (ts.radius * ts.radius) / (dist * dist));
         }
     }
-    double total = 0;
-    for (double f : flux) cdf_.push_back(total += f);
-    for (double& c : cdf_) c /= total;
-    if (!cdf_.empty()) cdf_.back() = 1;
+}
+
+void CausticEmitter::add_sun_pairs(const Scene& scene, std::vector<double>& flux) {
+    if (!sun_ || is_black(sun_->settings().irradiance)) return;
+    const Geometry& geometry = scene.geometry();
+    Bounds3 box;
+    for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim)
+        box.extend(geometry.is_sphere(prim) ? geometry.sphere(prim).bounds() : geometry.triangle(prim).bounds());
+    const Vec3 centre = (box.lo + box.hi) * 0.5;
+    const double radius = 0.5 * length(box.hi - box.lo);
+    for (uint32_t target = 0; target < geometry.sphere_count(); ++target) {
+        if (!aimed_at(scene, target)) continue;
+        const Sphere& ts = geometry.sphere(target);
+        has_sun_ = true;
+        pairs_.push_back({kSunLight, target, {}, sun_->settings().irradiance,
+                          length(ts.centre - centre) + radius + ts.radius});
+        // The flux through the sphere's disc.
+        flux.push_back(luminance(sun_->settings().irradiance) * kPi * ts.radius * ts.radius);
+    }
+}
+
+// A direction toward the sun, then a point of the target's disc across it, uniform: every ray
+// of that direction that meets the target passes through the disc.
+bool CausticEmitter::sample_sun(const Pair& pair, double choice, double u1, double u2, double u3, double u4,
+                                EmittedRay& out) const {
+    Vec3 toward;
+    Rgb value;
+    double pdf;
+    sun_->sample(u1, u2, toward, value, pdf);
+    const Sphere& ts = geometry_->sphere(pair.target);
+    double x, y;
+    sample_disk(u3, u4, x, y);
+    const Vec3 disc = Frame::around(toward).to_world(Vec3{x, y, 0}) * ts.radius;
+    out.ray = Ray{ts.centre + disc + toward * pair.far, -toward};
+    out.emitted_ratio = 0;
+    out.weight = value * (kPi * ts.radius * ts.radius / (pdf * choice));
+    out.light = kSunLight;
+    return true;
 }
 
 const CausticEmitter::Pair* CausticEmitter::find(uint32_t light, uint32_t target) const {
@@ -93,6 +140,8 @@ bool CausticEmitter::sample(double u_pick, double u1, double u2, double u3, doub
     const size_t chosen =
         std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u_pick) - cdf_.begin(), pairs_.size() - 1);
     const Pair& pair = pairs_[chosen];
+    if (pair.light == kSunLight)
+        return sample_sun(pair, cdf_[chosen] - (chosen == 0 ? 0 : cdf_[chosen - 1]), u1, u2, u3, u4, out);
     const Sphere &ls = geometry_->sphere(pair.light), &ts = geometry_->sphere(pair.target);
     const Vec3 w = pair.cap.sample(u1, u2);
     const Vec3 x = ls.centre + w * ls.radius;

@@ -23,7 +23,8 @@
 // Two sets of paths are not shared but split, each left to one strategy with weight one:
 // - camera → y → specular+ → light, with y the first diffuse vertex and its last specular
 //   vertex a sphere the CausticEmitter aims at from that point of the light: light tracing's
-//   splat of y alone; the path tracer drops what it finds there (PathTracer::trace);
+//   splat of y alone; the path tracer drops what it finds there (PathTracer::trace); the same
+//   with the sun for the light, its direction any of the disc's (PathTracer::escaped);
 // - in the pixels where the direct view splits (direct_view.h), what the camera sees through
 //   specular vertices only: the extra direct-view rays alone; the sample's own path leaves it out.
 //

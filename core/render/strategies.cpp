@@ -14,7 +14,7 @@ CausticEmitter emitter_for(const Scene& scene) {
 }  // namespace
 
 Strategies::Strategies(const Scene& scene) : caustic_emitter_(emitter_for(scene)) {
-    if (!caustic_emitter_.empty()) casters_ = CasterSampler(scene);
+    if (caustic_emitter_.has_sphere_lights()) casters_ = CasterSampler(scene);
 }
 
 }  // namespace glint
