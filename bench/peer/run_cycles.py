@@ -64,9 +64,13 @@ ENVIRONMENT_EDITS = ({0: {"type": "diffuse", "albedo": 0.45},
                       3: {"type": "mirror", "albedo": 0.9}},
                      {2: {"as_mesh": 4}, 3: {"as_mesh": 4}, 4: {"as_mesh": 4}})
 
-# Variants of the scenes: a base scene, the materials that replace its objects' (`material`), and
+CYCLES_BALLS = {2: {"as_mesh": 5, "smooth": True}, 3: {"as_mesh": 5, "smooth": True},
+                4: {"as_mesh": 5, "smooth": True}}
+
+# Variants of the scenes: a base scene, the materials that replace its objects' (`material`),
 # optionally edits of its objects (fields set, None: removed; `as_mesh`: a sphere made an
-# icosphere of that many subdivisions, its material and emission kept).
+# icosphere of that many subdivisions, its material and emission kept, smooth-shaded with
+# `smooth`), and optionally edits made for Cycles alone.
 # Rough glass is left out: Cycles 3.4's rough Glass BSDF takes its Fresnel term at the shading
 # normal, not the microfacet's, so it is another surface.
 VARIANTS = {
@@ -96,10 +100,15 @@ VARIANTS = {
     # courtyard's sky, rotated, and the sun are the scenes' own.
     "environment_cycles": ("environment", *ENVIRONMENT_EDITS),
     "environment_sun_cycles": ("environment_sun", *ENVIRONMENT_EDITS),
+    # The same with glint's balls true spheres and Cycles' smooth-shaded icospheres of 20,480
+    # triangles (vertex normals the sphere's): each renderer's own way to hold a ball. Whether
+    # the images still agree is in the table.
+    "environment_spheres": ("environment", ENVIRONMENT_EDITS[0], {}, CYCLES_BALLS),
+    "environment_sun_spheres": ("environment_sun", ENVIRONMENT_EDITS[0], {}, CYCLES_BALLS),
 }
 
 
-def icosphere(center, radius, subdivisions):
+def icosphere(center, radius, subdivisions, smooth=False):
     """An icosahedron subdivided `subdivisions` times, its vertices on the sphere, faces outward."""
     t = (1 + 5 ** 0.5) / 2
     vertices = [np.array(v, float) for v in ((-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t),
@@ -122,32 +131,51 @@ def icosphere(center, radius, subdivisions):
             ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
             finer += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
         faces = finer
-    return {"vertices": [[float(x) for x in np.asarray(center) + radius * v] for v in vertices],
+    mesh = {"vertices": [[float(x) for x in np.asarray(center) + radius * v] for v in vertices],
             "indices": [list(f) for f in faces]}
+    if smooth:
+        mesh["normals"] = [[float(x) for x in v] for v in vertices]
+    return mesh
 
 
-def box_filter_copy(name):
-    """The scene (or variant) with film.filter "box", beside the original so its mesh files resolve."""
+def edited(obj, fields):
+    """The object with `fields` set (None: removed; `as_mesh`: a sphere made an icosphere of that
+    many subdivisions, smooth-shaded with `smooth`)."""
+    for key, value in fields.items():
+        if key == "smooth":
+            continue
+        if key == "as_mesh":
+            sphere = {k: obj.pop(k) for k in ("center", "radius")}
+            obj.update(type="mesh", **icosphere(sphere["center"], sphere["radius"], value, fields.get("smooth", False)))
+        elif value is None:
+            obj.pop(key, None)
+        else:
+            obj[key] = value
+    return obj
+
+
+def box_filter_copies(name):
+    """The scene (or variant) with film.filter "box", beside the original so its mesh files
+    resolve: glint's copy and Cycles' (the same file unless the variant edits Cycles' alone)."""
     base, materials, *edits = VARIANTS.get(name, (name, {}))
     with open(os.path.join(ROOT, "scenes", base + ".json")) as f:
         scene = json.load(f)
     for index, material in materials.items():
         scene["objects"][index]["material"] = material
     for index, fields in (edits[0] if edits else {}).items():
-        obj = scene["objects"][index]
-        for key, value in fields.items():
-            if key == "as_mesh":
-                sphere = {k: obj.pop(k) for k in ("center", "radius")}
-                obj.update(type="mesh", **icosphere(sphere["center"], sphere["radius"], value))
-            elif value is None:
-                obj.pop(key, None)
-            else:
-                obj[key] = value
+        edited(scene["objects"][index], fields)
     scene.setdefault("film", {})["filter"] = "box"
-    path = os.path.join(ROOT, "scenes", f".peer-{name}.json")
-    with open(path, "w") as f:
+    paths = [os.path.join(ROOT, "scenes", f".peer-{name}.json")]
+    with open(paths[0], "w") as f:
         json.dump(scene, f)
-    return path
+    if len(edits) < 2:
+        return paths[0], paths[0]
+    for index, fields in edits[1].items():
+        edited(scene["objects"][index], fields)
+    paths.append(os.path.join(ROOT, "scenes", f".peer-{name}-cycles.json"))
+    with open(paths[1], "w") as f:
+        json.dump(scene, f)
+    return paths[0], paths[1]
 
 
 def timed(command):
@@ -179,7 +207,7 @@ def run_cycles(scene, out, a, spp, seed):
     return read_pfm(f"{out}_{spp}_{seed}.pfm"), r["cpu"], r["wall"]
 
 
-def run_both(scene, out, a, jobs):
+def run_both(scenes, out, a, jobs):
     """Each job by glint, then at once by Cycles: the machine's speed drifts by 10-20% over
     minutes, and renders side by side see the same machine. With --repeat N each ladder render
     is made N times over, alternating, and its times are the medians (the images are the same
@@ -188,8 +216,8 @@ def run_both(scene, out, a, jobs):
     for spp, seed in jobs:
         runs = {"glint": [], "cycles": []}
         for _ in range(a.repeat if seed == SEEDS["ladder"] else 1):
-            runs["glint"].append(run_glint(scene, out + "_glint", a, spp, seed))
-            runs["cycles"].append(run_cycles(scene, out + "_cycles", a, spp, seed))
+            runs["glint"].append(run_glint(scenes[0], out + "_glint", a, spp, seed))
+            runs["cycles"].append(run_cycles(scenes[1], out + "_cycles", a, spp, seed))
         for results, renders in ((glint, runs["glint"]), (cycles, runs["cycles"])):
             results[(spp, seed)] = (renders[0][0], float(np.median([r[1] for r in renders])),
                                     float(np.median([r[2] for r in renders])))
@@ -293,11 +321,12 @@ def main():
     jobs = [(s, SEEDS["ladder"]) for s in a.ladder] + [(a.reference_spp, s) for s in SEEDS["reference"]]
     summaries, curves, table = kept_results(a.scenes.split(","), a.results) if a.update else ([], [], [])
     for name in a.scenes.split(","):
-        copy = box_filter_copy(name)
+        copies = box_filter_copies(name)
         try:
-            g, c = run_both(copy, os.path.join(a.out, name), a, jobs)
+            g, c = run_both(copies, os.path.join(a.out, name), a, jobs)
         finally:
-            os.remove(copy)
+            for copy in set(copies):
+                os.remove(copy)
         summary, g_rows, c_rows = compare(name, g, c, a)
         summaries.append(summary)
         curves.append((name, g_rows, c_rows))

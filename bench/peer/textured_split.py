@@ -50,7 +50,7 @@ def mean_and_error(results, spp):
 
 def variant(name, change):
     """textured_diffuse as run_cycles writes it, changed, beside the scene (its files resolve)."""
-    path = run_cycles.box_filter_copy("textured_diffuse")
+    path, _ = run_cycles.box_filter_copies("textured_diffuse")
     with open(path) as f:
         scene = json.load(f)
     os.remove(path)

@@ -17,16 +17,24 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<float> rgb)
     : width_(width), height_(height), rgb_(std::move(rgb)) {
     if (width < 1 || height < 1 || rgb_.size() != size_t(width) * size_t(height) * 3)
         throw std::invalid_argument("environment: width·height RGB texels");
-    std::vector<double> weights(size_t(width) * height);
-    for (int j = 0; j < height; ++j) {
-        const double solid_angle = cell_solid_angle(j);
+    std::vector<double> luminance(size_t(width) * height), weights(luminance.size());
+    for (int j = 0; j < height; ++j)
         for (int i = 0; i < width; ++i) {
-            const double w = cell_weight(i, j) * solid_angle;
-            weights[size_t(j) * width + i] = w;
-            luminance_integral_ += w;
+            const size_t at = size_t(j) * width + i;
+            luminance[at] = cell_weight(i, j);
+            weights[at] = luminance[at] * cell_solid_angle(j);
+            luminance_integral_ += weights[at];
         }
-    }
-    distribution_ = Distribution2D(weights, width, height);
+    full_ = Distribution2D(weights, width, height);
+    const double mean = luminance_integral_ / (4 * kPi);
+    double above = 0;
+    for (int j = 0; j < height; ++j)
+        for (int i = 0; i < width; ++i) {
+            const size_t at = size_t(j) * width + i;
+            weights[at] = std::max(luminance[at] - mean, 0.0) * cell_solid_angle(j);
+            above += weights[at];
+        }
+    compensated_ = above > 0 ? Distribution2D(weights, width, height) : full_;
 }
 
 EnvironmentMap EnvironmentMap::from_texture(const Texture& image) {
@@ -42,7 +50,7 @@ EnvironmentMap EnvironmentMap::from_texture(const Texture& image) {
 }
 
 size_t EnvironmentMap::memory_bytes() const {
-    return rgb_.size() * sizeof(float) + distribution_.memory_bytes();
+    return rgb_.size() * sizeof(float) + full_.memory_bytes() + compensated_.memory_bytes();
 }
 
 double EnvironmentMap::cell_solid_angle(int j) const {
@@ -80,29 +88,30 @@ Rgb EnvironmentMap::lookup(double u, double v) const {
 
 // Within its cell a point is uniform in solid angle: u uniform, and sin θ uniform between the
 // row's edges, so that the density is constant over the cell and finite at the poles.
-bool EnvironmentMap::sample(double u1, double u2, double& u, double& z, double& pdf) const {
+bool EnvironmentMap::sample(EnvironmentSampling which, double u1, double u2, double& u, double& z,
+                            double& pdf) const {
     if (!(luminance_integral_ > 0)) return false;
     size_t column, row;
     double within_column, within_row;
-    distribution_.sample(u1, u2, column, row, within_column, within_row);
+    distribution(which).sample(u1, u2, column, row, within_column, within_row);
     const int j = int(row);
     const double top = sin_latitude_at_row_edge(j, height_), bottom = sin_latitude_at_row_edge(j + 1, height_);
     z = top + (bottom - top) * within_row;
     u = (double(column) + within_column) / width_;
-    pdf = cell_pdf(column, row);
+    pdf = cell_pdf(distribution(which), column, row);
     return pdf > 0;
 }
 
-double EnvironmentMap::cell_pdf(size_t column, size_t row) const {
-    const double probability = distribution_.pdf(column, row) / (double(width_) * height_);
+double EnvironmentMap::cell_pdf(const Distribution2D& distribution, size_t column, size_t row) const {
+    const double probability = distribution.pdf(column, row) / (double(width_) * height_);
     return probability / cell_solid_angle(int(row));
 }
 
-double EnvironmentMap::pdf(double u, double v) const {
+double EnvironmentMap::pdf(EnvironmentSampling which, double u, double v) const {
     if (!(luminance_integral_ > 0)) return 0;
     const size_t column = std::min(size_t(u * width_), size_t(width_ - 1));
     const size_t row = std::min(size_t(v * height_), size_t(height_ - 1));
-    return cell_pdf(column, row);
+    return cell_pdf(distribution(which), column, row);
 }
 
 }  // namespace glint

@@ -75,15 +75,18 @@ Environment lopsided(int width, int height) {
     return Environment(std::make_shared<const EnvironmentMap>(width, height, std::move(rgb)), s);
 }
 
-TEST(Environment, SampleReportsPdfsDensityWhichIntegratesToOne) {
+class EnvironmentSamplingTest : public ::testing::TestWithParam<EnvironmentSampling> {};
+
+TEST_P(EnvironmentSamplingTest, SampleReportsPdfsDensityWhichIntegratesToOne) {
+    const EnvironmentSampling which = GetParam();
     const Environment env = lopsided(16, 8);
     Rng rng(7, 0, 0);
     for (int n = 0; n < 2000; ++n) {
         Vec3 d;
         double pdf;
-        ASSERT_TRUE(env.sample(rng.uniform(), rng.uniform(), d, pdf));
+        ASSERT_TRUE(env.sample(which, rng.uniform(), rng.uniform(), d, pdf));
         EXPECT_NEAR(length(d), 1, 1e-12);
-        EXPECT_NEAR(pdf, env.pdf(d), 1e-9 * pdf);
+        EXPECT_NEAR(pdf, env.pdf(which, d), 1e-9 * pdf);
     }
     // ∫ pdf dω over a fine grid uniform in (φ, sin θ), whose points stand for equal solid angles.
     double sum = 0;
@@ -91,14 +94,16 @@ TEST(Environment, SampleReportsPdfsDensityWhichIntegratesToOne) {
     for (int j = 0; j < rows; ++j)
         for (int i = 0; i < columns; ++i) {
             const double phi = 2 * kPi * (i + 0.5) / columns, z = -1 + 2 * (j + 0.5) / rows, r = std::sqrt(1 - z * z);
-            sum += env.pdf({r * std::cos(phi), z, r * std::sin(phi)});
+            sum += env.pdf(which, {r * std::cos(phi), z, r * std::sin(phi)});
         }
     EXPECT_NEAR(sum * 4 * kPi / (double(columns) * rows), 1, 0.002);
 }
 
-// Pearson's χ² over the texels' cells: 128 cells, 127 degrees of freedom, whose 0.1% critical
-// value is 181.99; the expected counts are the density times each cell's solid angle.
-TEST(Environment, SamplesFallInEachCellAsTheDensitySays) {
+// Pearson's χ² over the texels' cells the density reaches (none may fall elsewhere); the
+// expected counts are the density times each cell's solid angle. The critical value at 0.1% for
+// k - 1 degrees of freedom by Wilson and Hilferty's approximation (181.99 for 127: 181.95).
+TEST_P(EnvironmentSamplingTest, SamplesFallInEachCellAsTheDensitySays) {
+    const EnvironmentSampling which = GetParam();
     const int width = 16, height = 8;
     const Environment env = lopsided(width, height);
     const int n = 200000;
@@ -114,9 +119,10 @@ TEST(Environment, SamplesFallInEachCellAsTheDensitySays) {
     for (int k = 0; k < n; ++k) {
         Vec3 d;
         double pdf;
-        if (env.sample(rng.uniform(), rng.uniform(), d, pdf)) ++counts[cell_of(d)];
+        if (env.sample(which, rng.uniform(), rng.uniform(), d, pdf)) ++counts[cell_of(d)];
     }
     double chi2 = 0;
+    int cells = 0;
     for (int j = 0; j < height; ++j) {
         const double top = std::sin(kPi * (0.5 - double(j) / height)), bottom = std::sin(kPi * (0.5 - double(j + 1) / height));
         const double solid_angle = 2 * kPi / width * (top - bottom);
@@ -124,21 +130,42 @@ TEST(Environment, SamplesFallInEachCellAsTheDensitySays) {
             const double phi = 2 * kPi * ((i + 0.5) / width - 0.5) - 33 * kPi / 180;
             const double theta = kPi * (0.5 - (j + 0.5) / height);
             const Vec3 centre{std::cos(theta) * std::cos(phi), std::sin(theta), std::cos(theta) * std::sin(phi)};
-            const double expected = n * env.pdf(centre) * solid_angle;
+            const double expected = n * env.pdf(which, centre) * solid_angle;
             const int got = counts[size_t(j) * width + i];
-            ASSERT_GT(expected, 0) << i << ", " << j;  // the black texel's cell too: its neighbours light it
+            // The full distribution reaches the black texel's cell too: its neighbours light it.
+            if (which == EnvironmentSampling::full) ASSERT_GT(expected, 0) << i << ", " << j;
+            if (expected == 0) {
+                EXPECT_EQ(got, 0) << i << ", " << j;
+                continue;
+            }
+            ++cells;
             chi2 += (got - expected) * (got - expected) / expected;
         }
     }
-    EXPECT_LT(chi2, 181.99);
+    const double dof = cells - 1, h = 2 / (9 * dof);
+    EXPECT_LT(chi2, dof * std::pow(1 - h + 3.0902 * std::sqrt(h), 3));
+    if (which == EnvironmentSampling::compensated) EXPECT_LT(cells, width * height / 2);  // it leaves the dim half out
+}
+
+INSTANTIATE_TEST_SUITE_P(Both, EnvironmentSamplingTest,
+                         ::testing::Values(EnvironmentSampling::full, EnvironmentSampling::compensated));
+
+// A uniform map has nothing above its mean: compensation leaves it whole.
+TEST(Environment, CompensatingAUniformMapLeavesItWhole) {
+    const Environment env(std::make_shared<const EnvironmentMap>(4, 2, std::vector<float>(4 * 2 * 3, 0.5f)), {});
+    const Vec3 d = normalize(Vec3{0.2, 0.5, -0.7});
+    EXPECT_NEAR(env.pdf(EnvironmentSampling::compensated, d), 1 / (4 * kPi), 1e-12);
+    EXPECT_NEAR(env.pdf(EnvironmentSampling::full, d), 1 / (4 * kPi), 1e-12);
 }
 
 TEST(Environment, ABlackEnvironmentSamplesNothing) {
     const Environment env(std::make_shared<const EnvironmentMap>(4, 2, std::vector<float>(4 * 2 * 3, 0.0f)), {});
     Vec3 d;
     double pdf;
-    EXPECT_FALSE(env.sample(0.3, 0.6, d, pdf));
-    EXPECT_EQ(env.pdf({0, 1, 0}), 0);
+    for (const EnvironmentSampling which : {EnvironmentSampling::full, EnvironmentSampling::compensated}) {
+        EXPECT_FALSE(env.sample(which, 0.3, 0.6, d, pdf));
+        EXPECT_EQ(env.pdf(which, {0, 1, 0}), 0);
+    }
     EXPECT_EQ(env.luminance_integral(), 0);
 }
 
