@@ -74,6 +74,11 @@ void CausticEmitter::add_distant_pairs(const Scene& scene, std::vector<double>& 
     const double environment = environment_ ? environment_->luminance_integral() : 0;
     if (!(sun > 0) && !(environment > 0)) return;
     const Geometry& geometry = scene.geometry();
+    // Their light paths end at the first diffuse surface they meet: without one they are cost alone.
+    bool any_diffuse = false;
+    for (uint32_t prim = 0; prim < geometry.primitive_count() && !any_diffuse; ++prim)
+        any_diffuse = scene.flags(prim).is_diffuse();
+    if (!any_diffuse) return;
     Bounds3 box;
     for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim)
         box.extend(geometry.is_sphere(prim) ? geometry.sphere(prim).bounds() : geometry.triangle(prim).bounds());
