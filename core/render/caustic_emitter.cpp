@@ -36,11 +36,10 @@ SphereCap CausticEmitter::cap_for(const Scene& scene, uint32_t light_prim, uint3
     return best;
 }
 
-CausticEmitter::CausticEmitter(const Scene& scene)
-    : geometry_(&scene.geometry()), sun_(scene.sun()), environment_(scene.environment()) {
+CausticEmitter::CausticEmitter(const Scene& scene) : geometry_(&scene.geometry()), sun_(scene.sun()) {
     std::vector<double> flux;
     add_sphere_light_pairs(scene, flux);
-    add_distant_pairs(scene, flux);
+    add_sun_pairs(scene, flux);
     double total = 0;
     for (double f : flux) cdf_.push_back(total += f);
     for (double& c : cdf_) c /= total;
@@ -68,13 +67,10 @@ void CausticEmitter::add_sphere_light_pairs(const Scene& scene, std::vector<doub
     }
 }
 
-void CausticEmitter::add_distant_pairs(const Scene& scene, std::vector<double>& flux) {
-    // What reaches a disc of unit area facing it, from the sun and from the whole environment.
-    const double sun = sun_ ? luminance(sun_->settings().irradiance) : 0;
-    const double environment = environment_ ? environment_->luminance_integral() : 0;
-    if (!(sun > 0) && !(environment > 0)) return;
+void CausticEmitter::add_sun_pairs(const Scene& scene, std::vector<double>& flux) {
+    if (!sun_ || is_black(sun_->settings().irradiance)) return;
     const Geometry& geometry = scene.geometry();
-    // Their light paths end at the first diffuse surface they meet: without one they are cost alone.
+    // Its light paths end at the first diffuse surface they meet: without one they are cost alone.
     bool any_diffuse = false;
     for (uint32_t prim = 0; prim < geometry.primitive_count() && !any_diffuse; ++prim)
         any_diffuse = scene.flags(prim).is_diffuse();
@@ -87,29 +83,22 @@ void CausticEmitter::add_distant_pairs(const Scene& scene, std::vector<double>& 
     for (uint32_t target = 0; target < geometry.sphere_count(); ++target) {
         if (!aimed_at(scene, target)) continue;
         const Sphere& ts = geometry.sphere(target);
-        const double far = length(ts.centre - centre) + radius + ts.radius;
-        has_distant_ = true;
-        for (const auto& [light, power] : {std::pair{kSunLight, sun}, std::pair{kEnvironmentLight, environment}}) {
-            if (!(power > 0)) continue;
-            pairs_.push_back({light, target, {}, Rgb{0}, far});
-            flux.push_back(power * kPi * ts.radius * ts.radius);  // through the sphere's disc
-        }
+        has_sun_ = true;
+        pairs_.push_back({kSunLight, target, {}, sun_->settings().irradiance,
+                          length(ts.centre - centre) + radius + ts.radius});
+        // The flux through the sphere's disc.
+        flux.push_back(luminance(sun_->settings().irradiance) * kPi * ts.radius * ts.radius);
     }
 }
 
-// A direction toward the light, then a point of the target's disc across it, uniform: every ray
+// A direction toward the sun, then a point of the target's disc across it, uniform: every ray
 // of that direction that meets the target passes through the disc.
-bool CausticEmitter::sample_distant(const Pair& pair, double choice, double u1, double u2, double u3, double u4,
-                                    EmittedRay& out) const {
+bool CausticEmitter::sample_sun(const Pair& pair, double choice, double u1, double u2, double u3, double u4,
+                                EmittedRay& out) const {
     Vec3 toward;
     Rgb value;
     double pdf;
-    if (pair.light == kSunLight) {
-        sun_->sample(u1, u2, toward, value, pdf);
-    } else {
-        if (!environment_->sample(EnvironmentSampling::full, u1, u2, toward, pdf)) return false;
-        value = environment_->radiance(toward);
-    }
+    sun_->sample(u1, u2, toward, value, pdf);
     const Sphere& ts = geometry_->sphere(pair.target);
     double x, y;
     sample_disk(u3, u4, x, y);
@@ -117,7 +106,7 @@ bool CausticEmitter::sample_distant(const Pair& pair, double choice, double u1, 
     out.ray = Ray{ts.centre + disc + toward * pair.far, -toward};
     out.emitted_ratio = 0;
     out.weight = value * (kPi * ts.radius * ts.radius / (pdf * choice));
-    out.light = pair.light;
+    out.light = kSunLight;
     return true;
 }
 
@@ -156,8 +145,8 @@ bool CausticEmitter::sample(double u_pick, double u1, double u2, double u3, doub
     const size_t chosen =
         std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u_pick) - cdf_.begin(), pairs_.size() - 1);
     const Pair& pair = pairs_[chosen];
-    if (is_distant(pair.light))
-        return sample_distant(pair, cdf_[chosen] - (chosen == 0 ? 0 : cdf_[chosen - 1]), u1, u2, u3, u4, out);
+    if (pair.light == kSunLight)
+        return sample_sun(pair, cdf_[chosen] - (chosen == 0 ? 0 : cdf_[chosen - 1]), u1, u2, u3, u4, out);
     const Sphere &ls = geometry_->sphere(pair.light), &ts = geometry_->sphere(pair.target);
     const Vec3 w = pair.cap.sample(u1, u2);
     const Vec3 x = ls.centre + w * ls.radius;

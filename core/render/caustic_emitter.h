@@ -11,13 +11,12 @@
 // light pokes 0.27 units through its radius-1e5 ceiling: the cap is a disc of radius 18, not the
 // nearly full hemisphere the light's cone spans.
 //
-// The sun (scene/sun.h) and the environment (scene/environment.h) are lights of this kind too,
-// far away, with a pair for every mirror and glass sphere: a direction toward the light as its
-// light sampling picks one, then a point of the sphere's disc across that direction, from
-// outside the scene. That covers every ray from the light that meets the sphere. Their light
-// paths are splatted at their first diffuse vertex only, which takes their caustics (camera → y
-// → specular+ → sun or environment, the last specular vertex one of these spheres) from the
-// path tracer; a delta sun's the path tracer cannot find at all.
+// The sun (scene/sun.h) is a light of this kind too, with a pair for every mirror and glass
+// sphere: a direction toward the sun as its light sampling picks one, then a point of the
+// sphere's disc across that direction, from outside the scene. That covers every ray from the
+// sun that meets the sphere. Its light paths are splatted at their first diffuse vertex only,
+// which takes the sun's caustics (camera → y → specular+ → sun, the last specular vertex one of
+// these spheres) from the path tracer; a delta sun's the path tracer cannot find at all.
 #pragma once
 
 #include <vector>
@@ -27,16 +26,14 @@
 
 namespace glint {
 
-// The lights far away, in pairs (not primitives).
+// The light in sun pairs (not a primitive).
 inline constexpr uint32_t kSunLight = kNoPrimitive - 1;
-inline constexpr uint32_t kEnvironmentLight = kNoPrimitive - 2;
-inline constexpr bool is_distant(uint32_t light) { return light == kSunLight || light == kEnvironmentLight; }
 
 struct EmittedRay {
     Ray ray;          // leaving the light's surface
     Rgb weight;       // emitted radiance · cos / (pdf of the point and direction)
-    double emitted_ratio;  // cos / (pdf of the point and direction); unused for distant lights
-    uint32_t light;   // primitive, kSunLight or kEnvironmentLight
+    double emitted_ratio;  // cos / (pdf of the point and direction); unused for the sun
+    uint32_t light;   // primitive, or kSunLight
 };
 
 class CausticEmitter {
@@ -45,8 +42,8 @@ public:
     explicit CausticEmitter(const Scene& scene);
 
     bool empty() const { return pairs_.empty(); }
-    // Whether any pair's light is a sphere (else all are distant).
-    bool has_sphere_lights() const { return !pairs_.empty() && !is_distant(pairs_.front().light); }
+    // Whether any pair's light is a sphere (else all are the sun's).
+    bool has_sphere_lights() const { return !pairs_.empty() && pairs_.front().light != kSunLight; }
     size_t pairs() const { return pairs_.size(); }
 
     bool sample(double u_pick, double u1, double u2, double u3, double u4, EmittedRay& out) const;
@@ -54,9 +51,9 @@ public:
     // tracing covers a path whose last two vertices are x and `target`.
     bool covers(uint32_t light, const Vec3& x, uint32_t target) const;
     bool is_target(uint32_t light, uint32_t prim) const { return find(light, prim) != nullptr; }
-    // Whether sample() emits from distant `light` toward `target`: whether light tracing covers
-    // a path that leaves `target` for that light.
-    bool covers_distant(uint32_t light, uint32_t target) const { return has_distant_ && find(light, target) != nullptr; }
+    // Whether sample() emits from the sun toward `target`: whether light tracing covers a path
+    // that leaves `target` for the sun.
+    bool covers_sun(uint32_t target) const { return has_sun_ && find(kSunLight, target) != nullptr; }
     // Density (by area on the light, by solid angle at x) of emitting from point x of `light`
     // along d, as sample() would.
     double pdf(uint32_t light, const Vec3& x, const Vec3& d) const;
@@ -70,9 +67,8 @@ private:
     };
     static SphereCap cap_for(const Scene& scene, uint32_t light_prim, uint32_t target_prim);
     void add_sphere_light_pairs(const Scene& scene, std::vector<double>& flux);
-    void add_distant_pairs(const Scene& scene, std::vector<double>& flux);
-    bool sample_distant(const Pair& pair, double choice, double u1, double u2, double u3, double u4,
-                        EmittedRay& out) const;
+    void add_sun_pairs(const Scene& scene, std::vector<double>& flux);
+    bool sample_sun(const Pair& pair, double choice, double u1, double u2, double u3, double u4, EmittedRay& out) const;
     const Pair* find(uint32_t light, uint32_t target) const;
     // Density of emitting from x along d, summed over the pairs of `light` (`chosen`, if any,
     // is counted without testing).
@@ -81,8 +77,7 @@ private:
 
     const Geometry* geometry_ = nullptr;
     const Sun* sun_ = nullptr;
-    const Environment* environment_ = nullptr;
-    bool has_distant_ = false;
+    bool has_sun_ = false;
     std::vector<Pair> pairs_;    // grouped by light
     std::vector<double> cdf_;    // pair choice, by the flux the pair's target intercepts
 };

@@ -186,17 +186,13 @@ Rgb PathTracer::escaped(const PathState& path, bool nee) const {
     const bool mis = nee && !path.specular;
     const LightSet& lights = scene_.lights();
     const Environment* environment = scene_.environment();
-    // Caustics that light paths from the sun or the environment cover are theirs alone (mis.h).
-    const bool caustic = strategies_.light_tracing() && path.shape == PathShape::caustic;
-    const auto traced_from = [&](uint32_t light) {
-        return caustic && strategies_.caustic_emitter().covers_distant(light, path.self);
-    };
     Rgb result = scene_.background();
     if (environment && (environment->settings().visible || !path.seen_directly))
-        result = traced_from(kEnvironmentLight)
-                     ? Rgb{0}
-                     : environment->radiance(d) * (mis ? power_heuristic(path.bsdf_pdf, lights.environment_pdf(d)) : 1);
-    if (const Sun* sun = scene_.sun(); sun && !traced_from(kSunLight) && sun->pdf(d) > 0)
+        result = environment->radiance(d) * (mis ? power_heuristic(path.bsdf_pdf, lights.environment_pdf(d)) : 1);
+    // Sun caustics that light tracing covers are its alone (mis.h).
+    const bool traced_from_sun = strategies_.light_tracing() && path.shape == PathShape::caustic &&
+                                 strategies_.caustic_emitter().covers_sun(path.self);
+    if (const Sun* sun = scene_.sun(); sun && !traced_from_sun && sun->pdf(d) > 0)
         result += sun->radiance(d) * (mis ? power_heuristic(path.bsdf_pdf, lights.sun_pdf(d)) : 1);
     return result;
 }

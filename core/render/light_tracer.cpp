@@ -66,14 +66,14 @@ bool LightTracer::to_diffuse(Ray ray, uint32_t self, uint32_t light, Rgb& throug
     return false;
 }
 
-// The first diffuse vertex of a path from the sun or the environment, splatted alone: the path
-// tracer leaves these paths to light tracing. Nothing is handed back for connections, whose
-// weights assume a light of area.
-void LightTracer::distant_caustic(const EmittedRay& e, Rng& rng) const {
+// The first diffuse vertex of a path from the sun, splatted alone: the path tracer leaves these
+// paths to light tracing. Nothing is handed back for connections, whose weights assume a light
+// of area.
+void LightTracer::sun_caustic(const EmittedRay& e, Rng& rng) const {
     Rgb throughput{1};
     int hits = 1;  // as a light's surface: the path tracer counts the escape as a bounce
     LightVertex v;
-    if (!to_diffuse(e.ray, kNoPrimitive, e.light, throughput, hits, rng, v.si, v.d_in)) return;
+    if (!to_diffuse(e.ray, kNoPrimitive, kSunLight, throughput, hits, rng, v.si, v.d_in)) return;
     Material scratch;
     v.beta = e.weight * throughput;
     v.albedo = Bsdf(scene_.material_at(v.si, scratch), v.si, -v.d_in).albedo();
@@ -86,8 +86,8 @@ LightPath LightTracer::trace(Rng& rng) const {
     LightPath path;
     EmittedRay e;
     if (!strategies_.caustic_emitter().sample(u_pick, u1, u2, u3, u4, e)) return path;
-    if (is_distant(e.light)) {
-        distant_caustic(e, rng);
+    if (e.light == kSunLight) {
+        sun_caustic(e, rng);
         return path;
     }
     Rgb throughput{1};

@@ -73,7 +73,7 @@ private:
     // emitter aims at, `light`'s targets). Counts hits and multiplies `throughput` on the way.
     bool to_diffuse(Ray ray, uint32_t self, uint32_t light, Rgb& throughput, int& hits, Rng& rng,
                     SurfaceInteraction& si, Vec3& d_in) const;
-    void distant_caustic(const EmittedRay& e, Rng& rng) const;
+    void sun_caustic(const EmittedRay& e, Rng& rng) const;
     // Connects vertex v to the eye, with weight w.
     void splat(const LightVertex& v, double w) const;
 

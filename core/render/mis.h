@@ -24,7 +24,7 @@
 // - camera → y → specular+ → light, with y the first diffuse vertex and its last specular
 //   vertex a sphere the CausticEmitter aims at from that point of the light: light tracing's
 //   splat of y alone; the path tracer drops what it finds there (PathTracer::trace); the same
-//   with the sun or the environment for the light (PathTracer::escaped);
+//   with the sun for the light, its direction any of the disc's (PathTracer::escaped);
 // - in the pixels where the direct view splits (direct_view.h), what the camera sees through
 //   specular vertices only: the extra direct-view rays alone; the sample's own path leaves it out.
 //

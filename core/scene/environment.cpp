@@ -25,19 +25,19 @@ Rgb Environment::radiance(const Vec3& d) const {
     return map_->lookup(u, v) * settings_.strength;
 }
 
-bool Environment::sample(EnvironmentSampling which, double u1, double u2, Vec3& d, double& pdf) const {
+bool Environment::sample(double u1, double u2, Vec3& d, double& pdf) const {
     double u, z;
-    if (!map_->sample(which, u1, u2, u, z, pdf)) return false;
+    if (!map_->sample(u1, u2, u, z, pdf)) return false;
     const double phi = 2 * kPi * (u - 0.5) - rotation_radians_;
     const double cos_theta = std::sqrt(std::max(0.0, 1 - z * z));
     d = Vec3{cos_theta * std::cos(phi), z, cos_theta * std::sin(phi)};
     return true;
 }
 
-double Environment::pdf(EnvironmentSampling which, const Vec3& d) const {
+double Environment::pdf(const Vec3& d) const {
     double u, v;
     to_image(d, u, v);
-    return map_->pdf(which, u, v);
+    return map_->pdf(u, v);
 }
 
 }  // namespace glint

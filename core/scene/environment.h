@@ -30,10 +30,10 @@ public:
     const EnvironmentMap& map() const { return *map_; }
     // The radiance arriving from direction d (unit), travelling along −d.
     Rgb radiance(const Vec3& d) const;
-    // A unit direction toward the environment, and its solid-angle density, by the map's
-    // distribution `which`; false where the environment is black.
-    bool sample(EnvironmentSampling which, double u1, double u2, Vec3& d, double& pdf) const;
-    double pdf(EnvironmentSampling which, const Vec3& d) const;
+    // A unit direction toward the environment, and its solid-angle density; false where the
+    // environment is black.
+    bool sample(double u1, double u2, Vec3& d, double& pdf) const;
+    double pdf(const Vec3& d) const;
     // ∫ luminance(L) dω over the sphere: with the scene's bounding sphere it gives the power
     // that light selection weighs against the scene's emitters.
     double luminance_integral() const { return map_->luminance_integral() * settings_.strength; }

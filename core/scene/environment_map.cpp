@@ -25,16 +25,19 @@ EnvironmentMap::EnvironmentMap(int width, int height, std::vector<float> rgb)
             weights[at] = luminance[at] * cell_solid_angle(j);
             luminance_integral_ += weights[at];
         }
-    full_ = Distribution2D(weights, width, height);
+    // MIS compensation (Karlík et al. 2019): BSDF sampling, combined by MIS, finds the light
+    // below the map's mean well enough, so light sampling takes only what stands above it.
+    // A map with nothing above its mean (a uniform one) is sampled whole.
     const double mean = luminance_integral_ / (4 * kPi);
-    double above = 0;
+    std::vector<double> above(luminance.size());
+    double total_above = 0;
     for (int j = 0; j < height; ++j)
         for (int i = 0; i < width; ++i) {
             const size_t at = size_t(j) * width + i;
-            weights[at] = std::max(luminance[at] - mean, 0.0) * cell_solid_angle(j);
-            above += weights[at];
+            above[at] = std::max(luminance[at] - mean, 0.0) * cell_solid_angle(j);
+            total_above += above[at];
         }
-    compensated_ = above > 0 ? Distribution2D(weights, width, height) : full_;
+    distribution_ = Distribution2D(total_above > 0 ? above : weights, width, height);
 }
 
 EnvironmentMap EnvironmentMap::from_texture(const Texture& image) {
@@ -50,7 +53,7 @@ EnvironmentMap EnvironmentMap::from_texture(const Texture& image) {
 }
 
 size_t EnvironmentMap::memory_bytes() const {
-    return rgb_.size() * sizeof(float) + full_.memory_bytes() + compensated_.memory_bytes();
+    return rgb_.size() * sizeof(float) + distribution_.memory_bytes();
 }
 
 double EnvironmentMap::cell_solid_angle(int j) const {
@@ -88,30 +91,29 @@ Rgb EnvironmentMap::lookup(double u, double v) const {
 
 // Within its cell a point is uniform in solid angle: u uniform, and sin θ uniform between the
 // row's edges, so that the density is constant over the cell and finite at the poles.
-bool EnvironmentMap::sample(EnvironmentSampling which, double u1, double u2, double& u, double& z,
-                            double& pdf) const {
+bool EnvironmentMap::sample(double u1, double u2, double& u, double& z, double& pdf) const {
     if (!(luminance_integral_ > 0)) return false;
     size_t column, row;
     double within_column, within_row;
-    distribution(which).sample(u1, u2, column, row, within_column, within_row);
+    distribution_.sample(u1, u2, column, row, within_column, within_row);
     const int j = int(row);
     const double top = sin_latitude_at_row_edge(j, height_), bottom = sin_latitude_at_row_edge(j + 1, height_);
     z = top + (bottom - top) * within_row;
     u = (double(column) + within_column) / width_;
-    pdf = cell_pdf(distribution(which), column, row);
+    pdf = cell_pdf(column, row);
     return pdf > 0;
 }
 
-double EnvironmentMap::cell_pdf(const Distribution2D& distribution, size_t column, size_t row) const {
-    const double probability = distribution.pdf(column, row) / (double(width_) * height_);
+double EnvironmentMap::cell_pdf(size_t column, size_t row) const {
+    const double probability = distribution_.pdf(column, row) / (double(width_) * height_);
     return probability / cell_solid_angle(int(row));
 }
 
-double EnvironmentMap::pdf(EnvironmentSampling which, double u, double v) const {
+double EnvironmentMap::pdf(double u, double v) const {
     if (!(luminance_integral_ > 0)) return 0;
     const size_t column = std::min(size_t(u * width_), size_t(width_ - 1));
     const size_t row = std::min(size_t(v * height_), size_t(height_ - 1));
-    return cell_pdf(distribution(which), column, row);
+    return cell_pdf(column, row);
 }
 
 }  // namespace glint

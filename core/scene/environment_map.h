@@ -16,17 +16,6 @@
 
 namespace glint {
 
-// Which of a map's two distributions to sample by.
-enum class EnvironmentSampling {
-    // In proportion to the luminance: every direction the map lights, for light paths, which
-    // no other strategy completes.
-    full,
-    // In proportion to the luminance above the map's mean (MIS compensation, Karlík et al.
-    // 2019): for next-event estimation, which BSDF sampling completes by MIS where it is 0.
-    // Where nothing lies above the mean (a uniform map), the same as `full`.
-    compensated,
-};
-
 class EnvironmentMap {
 public:
     // width·height linear RGB texels, rows top first; none negative or non-finite (the loader
@@ -43,11 +32,13 @@ public:
 
     // Bilinear between texel centres, wrapping around in u and held at the poles in v.
     Rgb lookup(double u, double v) const;
-    // A point (u, z = sin θ) of the image, in proportion to the luminance (or what `which` takes
-    // of it) over each texel's cell weighted by the cell's solid angle, and uniform in solid
-    // angle within the cell; its solid-angle density. False where the image is black.
-    bool sample(EnvironmentSampling which, double u1, double u2, double& u, double& z, double& pdf) const;
-    double pdf(EnvironmentSampling which, double u, double v) const;
+    // A point (u, z = sin θ) of the image, in proportion to the luminance above the map's mean
+    // over each texel's cell (all of it where nothing is above the mean) weighted by the cell's
+    // solid angle, and uniform in solid angle within the cell; its solid-angle density. False
+    // where the image is black. The density is zero in the cells below the mean: it is for
+    // light sampling that BSDF sampling completes by MIS.
+    bool sample(double u1, double u2, double& u, double& z, double& pdf) const;
+    double pdf(double u, double v) const;
     // ∫ luminance dω over the sphere.
     double luminance_integral() const { return luminance_integral_; }
 
@@ -55,15 +46,11 @@ private:
     Rgb texel(int i, int j) const;  // i wrapped, j held to the image
     double cell_weight(int i, int j) const;
     double cell_solid_angle(int row) const;
-    // Solid-angle density of sampling in that cell.
-    double cell_pdf(const Distribution2D& distribution, size_t column, size_t row) const;
-    const Distribution2D& distribution(EnvironmentSampling which) const {
-        return which == EnvironmentSampling::full ? full_ : compensated_;
-    }
+    double cell_pdf(size_t column, size_t row) const;  // solid-angle density of sampling in that cell
 
     int width_, height_;
     std::vector<float> rgb_;
-    Distribution2D full_, compensated_;
+    Distribution2D distribution_;
     double luminance_integral_ = 0;
 };
 

@@ -75,7 +75,7 @@ double LightSet::bounding_radius(const Geometry& geometry) {
 
 bool LightSet::sample_environment(double u1, double u2, double share, LightSample& out) const {
     double pdf;
-    if (!environment_->sample(kLightSampling, u1, u2, out.wi, pdf)) return false;
+    if (!environment_->sample(u1, u2, out.wi, pdf)) return false;
     out.distance = kInfinity;
     out.emission = environment_->radiance(out.wi);
     out.prim = kNoPrimitive;

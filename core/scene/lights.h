@@ -39,10 +39,6 @@ struct OtherLights {
 
 class LightSet {
 public:
-    // Next-event estimation's distribution over the environment: BSDF sampling, combined by
-    // MIS, completes it where it is 0.
-    static constexpr EnvironmentSampling kLightSampling = EnvironmentSampling::compensated;
-
     LightSet() = default;
     LightSet(const Geometry& geometry, const std::vector<Material>& materials,
              const std::vector<uint32_t>& material_of_prim, OtherLights others = {});
@@ -61,7 +57,7 @@ public:
     // The solid-angle density with which sample() would have produced direction d toward the
     // environment.
     double environment_pdf(const Vec3& d) const {
-        return environment_ ? environment_->pdf(kLightSampling, d) * pick_probability(environment_index_) : 0;
+        return environment_ ? environment_->pdf(d) * pick_probability(environment_index_) : 0;
     }
     // The same toward the sun's disc.
     double sun_pdf(const Vec3& d) const { return sun_ ? sun_->pdf(d) * pick_probability(sun_index_) : 0; }
