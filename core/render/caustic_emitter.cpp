@@ -70,11 +70,12 @@ void CausticEmitter::add_sphere_light_pairs(const Scene& scene, std::vector<doub
 void CausticEmitter::add_sun_pairs(const Scene& scene, std::vector<double>& flux) {
     if (!sun_ || is_black(sun_->settings().irradiance)) return;
     const Geometry& geometry = scene.geometry();
-    // Its light paths end at the first diffuse surface they meet: without one they are cost alone.
-    bool any_diffuse = false;
-    for (uint32_t prim = 0; prim < geometry.primitive_count() && !any_diffuse; ++prim)
-        any_diffuse = scene.flags(prim).is_diffuse();
-    if (!any_diffuse) return;
+    // Its light paths end at the first surface they meet that is not specular: without one they
+    // are cost alone.
+    bool any_receiver = false;
+    for (uint32_t prim = 0; prim < geometry.primitive_count() && !any_receiver; ++prim)
+        any_receiver = !scene.flags(prim).is_specular();
+    if (!any_receiver) return;
     Bounds3 box;
     for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim)
         box.extend(geometry.is_sphere(prim) ? geometry.sphere(prim).bounds() : geometry.triangle(prim).bounds());

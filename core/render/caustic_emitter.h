@@ -14,9 +14,10 @@
 // The sun (scene/sun.h) is a light of this kind too, with a pair for every mirror and glass
 // sphere: a direction toward the sun as its light sampling picks one, then a point of the
 // sphere's disc across that direction, from outside the scene. That covers every ray from the
-// sun that meets the sphere. Its light paths are splatted at their first diffuse vertex only,
-// which takes the sun's caustics (camera → y → specular+ → sun, the last specular vertex one of
-// these spheres) from the path tracer; a delta sun's the path tracer cannot find at all.
+// sun that meets the sphere. Its light paths are splatted at their first diffuse or glossy
+// vertex only, which takes the sun's caustics (camera → y → specular+ → sun, the last specular
+// vertex one of these spheres) from the path tracer; a delta sun's the path tracer cannot find
+// at all.
 #pragma once
 
 #include <vector>

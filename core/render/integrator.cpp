@@ -9,12 +9,14 @@ namespace glint {
 namespace {
 
 PathShape extend(PathShape shape, VertexKind kind) {
-    if (kind == VertexKind::glossy) return PathShape::other;
-    const bool diffuse = kind == VertexKind::diffuse;
+    const bool specular = kind == VertexKind::specular;
     switch (shape) {
-        case PathShape::camera: return diffuse ? PathShape::diffuse : PathShape::other;
-        case PathShape::diffuse: return diffuse ? PathShape::other : PathShape::caustic;
-        case PathShape::caustic: return diffuse ? PathShape::other : PathShape::caustic;
+        case PathShape::camera:
+            return specular ? PathShape::other : kind == VertexKind::diffuse ? PathShape::diffuse : PathShape::glossy;
+        case PathShape::diffuse:
+        case PathShape::caustic: return specular ? PathShape::caustic : PathShape::other;
+        case PathShape::glossy:
+        case PathShape::glossy_caustic: return specular ? PathShape::glossy_caustic : PathShape::other;
         case PathShape::other: return PathShape::other;
     }
     return PathShape::other;
@@ -190,7 +192,8 @@ Rgb PathTracer::escaped(const PathState& path, bool nee) const {
     if (environment && (environment->settings().visible || !path.seen_directly))
         result = environment->radiance(d) * (mis ? power_heuristic(path.bsdf_pdf, lights.environment_pdf(d)) : 1);
     // Sun caustics that light tracing covers are its alone (mis.h).
-    const bool traced_from_sun = strategies_.light_tracing() && path.shape == PathShape::caustic &&
+    const bool traced_from_sun = strategies_.light_tracing() &&
+                                 (path.shape == PathShape::caustic || path.shape == PathShape::glossy_caustic) &&
                                  strategies_.caustic_emitter().covers_sun(path.self);
     if (const Sun* sun = scene_.sun(); sun && !traced_from_sun && sun->pdf(d) > 0)
         result += sun->radiance(d) * (mis ? power_heuristic(path.bsdf_pdf, lights.sun_pdf(d)) : 1);

@@ -40,8 +40,9 @@ inline VertexKind vertex_kind(BsdfFlags flags) {
     return flags.is_specular() ? VertexKind::specular : flags.is_diffuse() ? VertexKind::diffuse : VertexKind::glossy;
 }
 
-// The shape of a camera path so far, for handing caustic paths to light tracing.
-enum class PathShape { camera, diffuse, caustic, other };  // caustic: one diffuse, then specular+
+// The shape of a camera path so far, for handing caustic paths to light tracing. caustic: one
+// diffuse vertex, then specular+; glossy_caustic: one glossy vertex, then specular+.
+enum class PathShape { camera, diffuse, caustic, glossy, glossy_caustic, other };
 
 class PathTracer {
 public:

@@ -5,7 +5,20 @@
 
 namespace glint {
 
-void LightTracer::splat(const LightVertex& v, double w) const {
+namespace {
+
+// f toward the eye of light arriving along d_in, times |n_s·wi| / |n_g·wi|: a light path's weight
+// is flux per unit of geometric area, so with a shading normal the adjoint BSDF takes that
+// factor (Veach 1997, 5.3); evaluate() gives f·|n_s·wi|.
+Rgb glossy_f(const Material& m, const SurfaceInteraction& si, const Vec3& d_in, const Vec3& to_eye) {
+    const double cos_in = std::fabs(dot(si.n, d_in));
+    if (!(cos_in > 0)) return Rgb{0};
+    return Bsdf(m, si, to_eye).evaluate(to_eye, -d_in).f_cos * (1 / cos_in);
+}
+
+}  // namespace
+
+void LightTracer::splat(const LightVertex& v, double w, const Material* glossy) const {
     const SurfaceInteraction& si = v.si;
     Camera::Projection proj;
     if (!camera_.project(si.p, proj)) return;
@@ -16,8 +29,10 @@ void LightTracer::splat(const LightVertex& v, double w) const {
     if (scene_.geometry().occluded(shadow, si.prim)) return;
     // Diffuse f = albedo/π; dω at the eye = |cos| dA / distance².
     const double pixels = double(width_) * height_;
-    const Rgb value = v.beta * v.albedo *
-                      (w * std::fabs(cos_eye) / (kPi * proj.distance * proj.distance) * proj.importance / pixels);
+    const Rgb value = glossy ? v.beta * glossy_f(*glossy, si, v.d_in, proj.to_eye) *
+                                   (w * std::fabs(cos_eye) / (proj.distance * proj.distance) * proj.importance / pixels)
+                             : v.beta * v.albedo *
+                                   (w * std::fabs(cos_eye) / (kPi * proj.distance * proj.distance) * proj.importance / pixels);
     // The pixels whose filter footprint holds (fx, fy), within the window; y counts from the
     // bottom here, rows from the top in the window.
     const double margin = filter_margin(filter_);
@@ -33,21 +48,22 @@ void LightTracer::splat(const LightVertex& v, double w) const {
 }
 
 bool LightTracer::to_diffuse(Ray ray, uint32_t self, uint32_t light, Rgb& throughput, int& hits, Rng& rng,
-                             SurfaceInteraction& si, Vec3& d_in) const {
+                             SurfaceInteraction& si, Vec3& d_in, bool glossy_ends) const {
     const IntegratorSettings& settings = scene_.integrator();
     for (bool first = true; ++hits <= settings.max_depth; first = false) {
         Hit hit;
         if (!scene_.geometry().intersect(ray, self, hit)) return false;
         const BsdfFlags flags = scene_.flags(hit.prim);
-        const bool diffuse = flags.is_diffuse();
+        const bool ends = flags.is_diffuse() || (glossy_ends && !flags.is_specular());
         // Other first surfaces are the path tracer's paths (or a connection's); a glossy surface
-        // ends a light path, whose weights assume diffuse and specular vertices only (mis.h).
-        if (!diffuse && !flags.is_specular()) return false;
-        if (first && (diffuse || (light != kNoPrimitive && !strategies_.caustic_emitter().is_target(light, hit.prim))))
+        // ends a light path, whose weights assume diffuse and specular vertices only (mis.h),
+        // unless it is to be splatted alone.
+        if (!ends && !flags.is_specular()) return false;
+        if (first && (ends || (light != kNoPrimitive && !strategies_.caustic_emitter().is_target(light, hit.prim))))
             return false;
         si = scene_.interaction(ray, hit);
         d_in = ray.d;
-        if (diffuse) return true;
+        if (ends) return true;
         // Specular BSDFs carry no η², and their Fresnel terms are the same from either side
         // (Schlick's uses the outer cosine), so sampling them from the light side gives the
         // adjoint weights.
@@ -66,17 +82,19 @@ bool LightTracer::to_diffuse(Ray ray, uint32_t self, uint32_t light, Rgb& throug
     return false;
 }
 
-// The first diffuse vertex of a path from the sun, splatted alone: the path tracer leaves these
-// paths to light tracing. Nothing is handed back for connections, whose weights assume a light
-// of area.
+// The first diffuse or glossy vertex of a path from the sun, splatted alone: the path tracer
+// leaves these paths to light tracing. Nothing is handed back for connections, whose weights
+// assume a light of area.
 void LightTracer::sun_caustic(const EmittedRay& e, Rng& rng) const {
     Rgb throughput{1};
     int hits = 1;  // as a light's surface: the path tracer counts the escape as a bounce
     LightVertex v;
-    if (!to_diffuse(e.ray, kNoPrimitive, kSunLight, throughput, hits, rng, v.si, v.d_in)) return;
+    if (!to_diffuse(e.ray, kNoPrimitive, kSunLight, throughput, hits, rng, v.si, v.d_in, true)) return;
     Material scratch;
+    const Material& m = scene_.material_at(v.si, scratch);
     v.beta = e.weight * throughput;
-    v.albedo = Bsdf(scene_.material_at(v.si, scratch), v.si, -v.d_in).albedo();
+    if (!scene_.flags(v.si.prim).is_diffuse()) return splat(v, 1, &m);
+    v.albedo = Bsdf(m, v.si, -v.d_in).albedo();
     splat(v, 1);
 }
 

@@ -69,13 +69,15 @@ public:
 
 private:
     // Follows `ray` from primitive `self` through specular vertices to the first diffuse
-    // surface; the first surface must be specular (from the light: one of the spheres the
-    // emitter aims at, `light`'s targets). Counts hits and multiplies `throughput` on the way.
+    // surface (or, with `glossy_ends`, the first that is not specular); the first surface must
+    // be specular (from the light: one of the spheres the emitter aims at, `light`'s targets).
+    // Counts hits and multiplies `throughput` on the way.
     bool to_diffuse(Ray ray, uint32_t self, uint32_t light, Rgb& throughput, int& hits, Rng& rng,
-                    SurfaceInteraction& si, Vec3& d_in) const;
+                    SurfaceInteraction& si, Vec3& d_in, bool glossy_ends = false) const;
     void sun_caustic(const EmittedRay& e, Rng& rng) const;
-    // Connects vertex v to the eye, with weight w.
-    void splat(const LightVertex& v, double w) const;
+    // Connects vertex v to the eye, with weight w: through its albedo/π, or where `glossy` is
+    // its material, through that material's BSDF toward the eye.
+    void splat(const LightVertex& v, double w, const Material* glossy = nullptr) const;
 
     const Scene& scene_;
     const Strategies& strategies_;
