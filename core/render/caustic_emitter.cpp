@@ -76,17 +76,13 @@ void CausticEmitter::add_sun_pairs(const Scene& scene, std::vector<double>& flux
     for (uint32_t prim = 0; prim < geometry.primitive_count() && !any_receiver; ++prim)
         any_receiver = !scene.flags(prim).is_specular();
     if (!any_receiver) return;
-    Bounds3 box;
-    for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim)
-        box.extend(geometry.is_sphere(prim) ? geometry.sphere(prim).bounds() : geometry.triangle(prim).bounds());
+    const Bounds3 box = geometry.bounds();
     const Vec3 centre = (box.lo + box.hi) * 0.5;
     const double radius = 0.5 * length(box.hi - box.lo);
     for (uint32_t target = 0; target < geometry.sphere_count(); ++target) {
         if (!aimed_at(scene, target)) continue;
         const Sphere& ts = geometry.sphere(target);
-        has_sun_ = true;
-        pairs_.push_back({kSunLight, target, {}, sun_->settings().irradiance,
-                          length(ts.centre - centre) + radius + ts.radius});
+        pairs_.push_back({kSunLight, target, {}, Rgb{0}, length(ts.centre - centre) + radius + ts.radius});
         // The flux through the sphere's disc.
         flux.push_back(luminance(sun_->settings().irradiance) * kPi * ts.radius * ts.radius);
     }

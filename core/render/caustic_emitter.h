@@ -54,7 +54,9 @@ public:
     bool is_target(uint32_t light, uint32_t prim) const { return find(light, prim) != nullptr; }
     // Whether sample() emits from the sun toward `target`: whether light tracing covers a path
     // that leaves `target` for the sun.
-    bool covers_sun(uint32_t target) const { return has_sun_ && find(kSunLight, target) != nullptr; }
+    bool covers_sun(uint32_t target) const {
+        return !pairs_.empty() && pairs_.back().light == kSunLight && find(kSunLight, target) != nullptr;
+    }
     // Density (by area on the light, by solid angle at x) of emitting from point x of `light`
     // along d, as sample() would.
     double pdf(uint32_t light, const Vec3& x, const Vec3& d) const;
@@ -63,7 +65,7 @@ private:
     struct Pair {
         uint32_t light, target;
         SphereCap cap;  // on a sphere light
-        Rgb emission;
+        Rgb emission;   // a sphere light's (the sun's is sampled with its direction)
         double far = 0;  // sun pairs: from the target's centre to outside the scene
     };
     static SphereCap cap_for(const Scene& scene, uint32_t light_prim, uint32_t target_prim);
@@ -78,8 +80,7 @@ private:
 
     const Geometry* geometry_ = nullptr;
     const Sun* sun_ = nullptr;
-    bool has_sun_ = false;
-    std::vector<Pair> pairs_;    // grouped by light
+    std::vector<Pair> pairs_;    // grouped by light, the sun's last
     std::vector<double> cdf_;    // pair choice, by the flux the pair's target intercepts
 };
 

@@ -191,11 +191,13 @@ Rgb PathTracer::escaped(const PathState& path, bool nee) const {
     Rgb result = scene_.background();
     if (environment && (environment->settings().visible || !path.seen_directly))
         result = environment->radiance(d) * (mis ? power_heuristic(path.bsdf_pdf, lights.environment_pdf(d)) : 1);
+    const Sun* sun = scene_.sun();
+    if (!sun || !(sun->pdf(d) > 0)) return result;
     // Sun caustics that light tracing covers are its alone (mis.h).
     const bool traced_from_sun = strategies_.light_tracing() &&
                                  (path.shape == PathShape::caustic || path.shape == PathShape::glossy_caustic) &&
                                  strategies_.caustic_emitter().covers_sun(path.self);
-    if (const Sun* sun = scene_.sun(); sun && !traced_from_sun && sun->pdf(d) > 0)
+    if (!traced_from_sun)
         result += sun->radiance(d) * (mis ? power_heuristic(path.bsdf_pdf, lights.sun_pdf(d)) : 1);
     return result;
 }

@@ -293,4 +293,11 @@ Uv Geometry::uv(const SurfaceInteraction& si) const {
     return attributes_.uvs[triangle_index(si.prim)].at(si.b1, si.b2);
 }
 
+Bounds3 Geometry::bounds() const {
+    Bounds3 box;
+    for (uint32_t prim = 0; prim < primitive_count(); ++prim)
+        box.extend(is_sphere(prim) ? sphere(prim).bounds() : triangle(prim).bounds());
+    return box;
+}
+
 }  // namespace glint

@@ -61,6 +61,8 @@ public:
     bool is_sphere(uint32_t prim) const { return prim < spheres_.size(); }
     const Sphere& sphere(uint32_t prim) const { return spheres_[prim]; }
     Triangle triangle(uint32_t prim) const { return packed(position(prim)).unpack(); }
+    // The box around every primitive (computed on each call: for set-up, not for queries).
+    Bounds3 bounds() const;
     uint32_t triangle_id(size_t triangle_index) const {
         return static_cast<uint32_t>(spheres_.size() + triangle_index);
     }

@@ -66,9 +66,7 @@ LightSet::LightSet(const Geometry& geometry, const std::vector<Material>& materi
 }
 
 double LightSet::bounding_radius(const Geometry& geometry) {
-    Bounds3 box;
-    for (uint32_t prim = 0; prim < geometry.primitive_count(); ++prim)
-        box.extend(geometry.is_sphere(prim) ? geometry.sphere(prim).bounds() : geometry.triangle(prim).bounds());
+    const Bounds3 box = geometry.bounds();
     const double r = 0.5 * length(box.hi - box.lo);
     return r > 0 && std::isfinite(r) ? r : 1;
 }
