@@ -65,6 +65,11 @@ std::vector<uint8_t> read_file(const std::string& path, size_t max_bytes) {
     return bytes;
 }
 
+std::string read_text(const std::filesystem::path& path, size_t max_bytes) {
+    const std::vector<uint8_t> bytes = read_file(path.string(), max_bytes);
+    return {bytes.begin(), bytes.end()};
+}
+
 std::optional<std::filesystem::path> resolve_inside(const std::filesystem::path& folder, const std::string& relative) {
     const std::filesystem::path name = relative;
     if (relative.find('\0') != std::string::npos || name.has_root_path()) return std::nullopt;

@@ -19,6 +19,8 @@ struct FileError : std::runtime_error {
 void write_file(const std::string& path, const std::vector<uint8_t>& bytes);
 // Throws FileError if the file is missing, not a regular file, unreadable or larger than max_bytes.
 std::vector<uint8_t> read_file(const std::string& path, size_t max_bytes);
+// read_file's bytes as text.
+std::string read_text(const std::filesystem::path& path, size_t max_bytes);
 
 // `relative` resolved against `folder` (symlinks and ".." followed), or nothing when it is
 // absolute, holds a NUL or resolves to a place outside the folder.

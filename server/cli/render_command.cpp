@@ -1,7 +1,6 @@
 // `glint render`: scene files to PNG (and optionally PFM and EXR), or one scene's sample range to a
 // partial file, with progress on the terminal. Ctrl-C stops the render and still writes the
 // image rendered so far.
-#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +19,7 @@
 #include "io/fingerprint.h"
 #include "io/partial_file.h"
 #include "io/scene_loader.h"
+#include "service/checkpointer.h"
 
 namespace glint {
 namespace {
@@ -111,24 +111,22 @@ void write_outputs(const RenderJob& job, uint64_t print, const Outputs& out, Thr
 class Checkpoint {
 public:
     Checkpoint(std::string path, double interval, uint64_t fingerprint)
-        : path_(std::move(path)), interval_(interval), fingerprint_(fingerprint) {}
+        : path_(std::move(path)), checkpointer_(interval, fingerprint) {}
 
     // Continues `job` from the file if there is one; throws SceneError if it cannot.
     void resume(RenderJob& job) const {
         if (path_.empty() || !std::filesystem::exists(path_)) return;
         try {
             const Partial saved = decode_partial(read_file(path_, size_t(8) << 30));
-            check_continues(saved, fingerprint_, job.settings());
-            job.resume(saved.film, saved.end_sample - saved.first_sample);
+            checkpointer_.resume(job, saved);
             spdlog::info("{}: continuing from sample {}", path_, saved.end_sample);
         } catch (const std::exception& e) {
             throw SceneError("--checkpoint", path_ + " cannot be continued: " + e.what() + " (remove it to start over)");
         }
     }
     void after_pass(const RenderJob& job) {
-        if (path_.empty() || std::chrono::steady_clock::now() - last_ < std::chrono::duration<double>(interval_)) return;
-        write_file(path_, encode_partial(partial_of(job, fingerprint_, job.progress().spp_done)));
-        last_ = std::chrono::steady_clock::now();
+        if (path_.empty()) return;
+        checkpointer_.after_pass(job, [&](const Partial& film) { write_file(path_, encode_partial(film)); });
     }
     void remove() const {
         if (!path_.empty()) std::filesystem::remove(path_);
@@ -136,9 +134,7 @@ public:
 
 private:
     std::string path_;
-    double interval_;
-    uint64_t fingerprint_;
-    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+    Checkpointer checkpointer_;
 };
 
 // Renders one scene; returns the exit status (0 done, 1 failed, 130 interrupted).

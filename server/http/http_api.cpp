@@ -65,8 +65,7 @@ std::shared_ptr<Job> HttpApi::job_or_404(const httplib::Request& req, httplib::R
 // Parses and queues the job a request describes, or answers with the error and returns null.
 std::shared_ptr<Job> HttpApi::accept(const httplib::Request& req, httplib::Response& res) {
     try {
-        const JobRequest request = parse_job_request(req.body, scenes_, scene_limits_, &assets_);
-        return jobs_.submit(request.scene, req.body, request.priority);
+        return jobs_.submit(parse_job_request(req.body, scenes_, scene_limits_, &assets_), req.body);
     } catch (const ServiceError& e) {
         send_error(res, e);
     }

@@ -170,15 +170,17 @@ nlohmann::json parse_request_json(const std::string& body) {
     }
 }
 
-JobRequest parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits,
-                             AssetCache* assets) {
+JobSpec parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits,
+                          AssetCache* assets) {
     nlohmann::json request = parse_request_json(body);
     // Both paths end with check_settings(): scene_from_json's own, or apply_film_overrides'.
     const int priority = priority_of(request);
     if (request.is_object() && request.contains("preset"))
-        return {parse_preset_request(request, scenes, limits, assets), priority};
+        return {parse_preset_request(request, scenes, limits, assets), priority,
+                {request.at("preset").get<std::string>(), {}}};
     if (request.is_object()) request.erase("priority");  // the job's, not the scene's
-    return {load_checked([&] { return scene_from_json(request, scenes, limits, assets); }), priority};
+    LoadedScene scene = load_checked([&] { return scene_from_json(request, scenes, limits, assets); });
+    return {std::move(scene), priority, {"", std::move(request)}};
 }
 
 nlohmann::json list_presets(const std::filesystem::path& scenes) {

@@ -11,6 +11,7 @@
 
 #include "io/scene_loader.h"
 #include "service/errors.h"
+#include "service/job_spec.h"
 
 namespace glint {
 
@@ -18,17 +19,13 @@ namespace glint {
 // is not.
 nlohmann::json parse_request_json(const std::string& body);
 
-struct JobRequest {
-    LoadedScene scene;
-    int priority = 0;  // in [kMinPriority, kMaxPriority] (service/priority.h)
-};
-
 // A job's priority from its JSON value; InvalidRequest (path "priority") unless an integer in
 // [kMinPriority, kMaxPriority].
 int priority_in(const nlohmann::json& value);
 
-// Throws MalformedRequest, InvalidRequest or NotFound (an unknown preset).
-JobRequest parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits,
+// The job a request body describes; throws MalformedRequest, InvalidRequest or NotFound (an
+// unknown preset).
+JobSpec parse_job_request(const std::string& body, const std::filesystem::path& scenes, const SceneLimits& limits,
                              AssetCache* assets = nullptr);
 
 // The scenes folder's *.json files, by name (file stem), with their descriptions and film sizes.

@@ -20,7 +20,7 @@ RenderServer::RenderServer(const ServiceConfig& service, const HttpConfig& http)
             "refusing to listen on " + http.host +
             " without a token: anyone who reaches it could run jobs; set --token or GLINT_TOKEN");
     jobs_.restore([&](const std::string& request) {
-        return parse_job_request(request, service.scenes, service.scene, &assets_).scene;
+        return parse_job_request(request, service.scenes, service.scene, &assets_);
     });
     // HTTP work gets its own threads, many of them: each open stream holds one (cpp-httplib is
     // blocking), and rendering never runs on them.

@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "service/errors.h"
+#include "service/slurm_farm.h"
 
 namespace glint {
 namespace {
@@ -21,11 +22,11 @@ std::string new_job_id() {
 
 }  // namespace
 
-JobManager::JobManager(ThreadPool& pool, const ServiceConfig& config)
+JobManager::JobManager(ThreadPool& pool, const ServiceConfig& config, std::unique_ptr<Farm> farm)
     : pool_(pool),
       config_(config),
       store_(config.store.dir.empty() ? nullptr : std::make_unique<JobStore>(config.store)),
-      farm_(config.farm.slurm ? std::make_unique<SlurmFarm>(config.farm, config.scenes) : nullptr),
+      farm_(farm ? std::move(farm) : config.farm.slurm ? std::make_unique<SlurmFarm>(config.farm, config.scenes) : nullptr),
       denoise_gate_(config.max_denoising) {
     try {
         for (unsigned i = 0; i < config_.max_running; ++i) slots_.emplace_back([this] { slot(); });
@@ -43,21 +44,17 @@ JobManager::~JobManager() {
     for (std::thread& t : slots_) t.join();
 }
 
-std::shared_ptr<Job> JobManager::submit(const LoadedScene& scene, const std::string& request, int priority) {
+std::shared_ptr<Job> JobManager::submit(const JobSpec& spec, const std::string& request) {
+    const LoadedScene& scene = spec.scene;
+    const int priority = spec.priority;
     const uint64_t film_bytes = store_ ? partial_file_size(scene.settings.width, scene.settings.height, scene.settings.aovs) : 0;
     if (store_ && film_bytes > store_->config().limit_bytes)
         throw InvalidRequest("the job's checkpoint (" + std::to_string(film_bytes) +
                              " bytes) would not fit in the store (limit " +
                              std::to_string(store_->config().limit_bytes) + " bytes)");
-    if (farm_ && (scene.settings.time_limit > 0 || scene.settings.target_error > 0))
-        throw InvalidRequest("a job on the farm renders every sample it asks for: it takes no time limit or target error",
-                             scene.settings.time_limit > 0 ? "film.time_limit" : "film.target_error");
-    // Its parts would each adapt with a scaled threshold, and the farm does not pass one on.
-    if (farm_ && scene.settings.adaptive.on())
-        throw InvalidRequest("a job on the farm renders every sample it asks for: it takes no adaptive sampling",
-                             "film.adaptive");
-    auto job = std::make_shared<Job>(new_job_id(), scene, store_.get(), std::chrono::system_clock::now(), farm_job(request),
-                                     priority);
+    if (farm_) check_farm_settings(scene.settings);
+    auto job = std::make_shared<Job>(new_job_id(), scene, store_.get(), std::chrono::system_clock::now(),
+                                     farm_job(spec.source), priority);
     {
         std::lock_guard lock(mutex_);
         if (stopping_) throw Busy("the server is shutting down");
@@ -110,7 +107,7 @@ void JobManager::forget_old_finished(uint64_t reserve) {
                      used, limit);
 }
 
-void JobManager::restore(const std::function<LoadedScene(const std::string&)>& parse) {
+void JobManager::restore(const std::function<JobSpec(const std::string&)>& parse) {
     if (!store_) return;
     std::vector<std::shared_ptr<Job>> restored_jobs;
     for (const StoredJob& stored : store_->load()) {
@@ -140,13 +137,13 @@ void JobManager::restore(const std::function<LoadedScene(const std::string&)>& p
                  store_->config().dir.string(), restored, unfinished, store_->bytes_used(), store_->config().limit_bytes);
 }
 
-std::shared_ptr<Job> JobManager::restore_job(const StoredJob& stored, const LoadedScene& loaded) const {
-    LoadedScene scene = loaded;
+std::shared_ptr<Job> JobManager::restore_job(const StoredJob& stored, const JobSpec& spec) const {
+    LoadedScene scene = spec.scene;
     const JobRecord& record = stored.record;
     if (scene.settings.time_limit > 0)  // the time rendered before the restart counts
         scene.settings.time_limit = std::max(1e-3, scene.settings.time_limit - record.progress.seconds);
     auto job = std::make_shared<Job>(stored.id, scene, store_.get(), record.created,
-                                     farm_job(stored.request, stored.farm), record.priority);
+                                     farm_job(spec.source, stored.farm), record.priority);
     const bool final = is_final(record.state);
     const FilmFile which = final ? FilmFile::final : FilmFile::checkpoint;
     try {
@@ -165,10 +162,10 @@ std::shared_ptr<Job> JobManager::restore_job(const StoredJob& stored, const Load
     return job;
 }
 
-FarmJob JobManager::farm_job(const std::string& request, const std::string& stored_run) const {
+FarmJob JobManager::farm_job(const SceneSource& source, const std::string& stored_run) const {
     if (!farm_) return {};
-    FarmJob job{farm_.get(), request, std::nullopt};
-    if (!stored_run.empty()) job.run = FarmRun::from_json(nlohmann::json::parse(stored_run));
+    FarmJob job{farm_.get(), source, std::nullopt};
+    if (!stored_run.empty()) job.run = farm_->resume(nlohmann::json::parse(stored_run));
     return job;
 }
 

@@ -14,7 +14,9 @@
 #include <thread>
 #include <vector>
 
+#include "service/farm.h"
 #include "service/job.h"
+#include "service/job_spec.h"
 #include "service/job_store.h"
 #include "service/service_config.h"
 
@@ -23,18 +25,21 @@ namespace glint {
 class JobManager {
 public:
     // With config.store.dir set, jobs are kept in that folder (job_store.h); call restore() next.
-    JobManager(ThreadPool& pool, const ServiceConfig& config);
+    // Jobs render on `farm` if one is given, else on config.farm's (with config.farm.slurm),
+    // else on `pool`.
+    JobManager(ThreadPool& pool, const ServiceConfig& config, std::unique_ptr<Farm> farm = nullptr);
     ~JobManager();  // cancels everything and waits for the running jobs to stop
 
     // Throws Busy (service/errors.h) when max_queued jobs are already waiting or the manager is
-    // shutting down, InvalidRequest when the job's film would not fit in the store. `request` is
-    // what the store keeps to rebuild the job after a restart (parsed again by restore's `parse`).
-    // Queued jobs start in order of priority (service/priority.h), then of submission.
-    std::shared_ptr<Job> submit(const LoadedScene& scene, const std::string& request = "", int priority = 0);
+    // shutting down, InvalidRequest when the job's film would not fit in the store or it asks a
+    // farm for what a farm does not do (service/farm.h). `request` is what the store keeps to
+    // rebuild the job after a restart (parsed again by restore's `parse`). Queued jobs start in
+    // order of priority (service/priority.h), then of submission.
+    std::shared_ptr<Job> submit(const JobSpec& spec, const std::string& request = "");
     // Takes back the store's jobs (same ids, oldest first): unfinished ones are queued to resume
     // from their checkpoints, finished ones serve their images again. A job whose checkpoint is
     // corrupt or does not fit its scene is marked failed with the reason.
-    void restore(const std::function<LoadedScene(const std::string& request)>& parse);
+    void restore(const std::function<JobSpec(const std::string& request)>& parse);
     std::shared_ptr<Job> find(const std::string& id) const;
     std::vector<std::shared_ptr<Job>> list() const;  // oldest first
     size_t running() const;
@@ -51,13 +56,13 @@ private:
     // Under mutex_: forgets the oldest finished jobs beyond max_finished or while the store,
     // plus `reserve` bytes about to be written, is over its limit.
     void forget_old_finished(uint64_t reserve = 0);
-    std::shared_ptr<Job> restore_job(const StoredJob& stored, const LoadedScene& scene) const;
-    FarmJob farm_job(const std::string& request, const std::string& stored_run = "") const;
+    std::shared_ptr<Job> restore_job(const StoredJob& stored, const JobSpec& spec) const;
+    FarmJob farm_job(const SceneSource& source, const std::string& stored_run = "") const;
 
     ThreadPool& pool_;
     ServiceConfig config_;
     std::unique_ptr<JobStore> store_;
-    std::unique_ptr<SlurmFarm> farm_;  // with config.farm.slurm: every job renders there
+    std::unique_ptr<Farm> farm_;  // every job renders there, if set
     DenoiseGate denoise_gate_;
     mutable std::mutex mutex_;
     std::condition_variable work_;

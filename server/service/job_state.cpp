@@ -16,6 +16,11 @@ const char* to_string(JobState state) {
     return "?";
 }
 
+bool can_move(JobState from, JobState to) {
+    if (is_final(from)) return false;
+    return from == to || from == JobState::queued || is_final(to);
+}
+
 JobState job_state_named(const std::string& name) {
     for (JobState s : {JobState::queued, JobState::running, JobState::done, JobState::cancelled,
                        JobState::failed})

@@ -18,11 +18,6 @@ constexpr size_t kMaxRequestBytes = size_t(64) << 20, kMaxStateBytes = size_t(1)
 
 std::vector<uint8_t> bytes_of(const std::string& text) { return {text.begin(), text.end()}; }
 
-std::string read_text(const fs::path& file, size_t max_bytes) {
-    const std::vector<uint8_t> bytes = read_file(file.string(), max_bytes);
-    return {bytes.begin(), bytes.end()};
-}
-
 bool is_job_id(const std::string& name) {
     return name.size() == 16 && std::all_of(name.begin(), name.end(), [](char c) {
                return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');

@@ -12,7 +12,7 @@ namespace {
 using namespace std::chrono_literals;
 
 std::shared_ptr<Job> finished_job(JobManager& jobs) {
-    auto job = jobs.submit(testing::small_cornell(16));
+    auto job = jobs.submit({testing::small_cornell(16), 0, {}});
     for (JobSnapshot s = job->snapshot(); !is_final(s.state); s = job->wait(s.frame, 1s)) {}
     return job;
 }
