@@ -2,6 +2,8 @@
 
 #include <arpa/inet.h>
 
+#include "http/routes.h"
+
 namespace glint {
 
 bool is_loopback_host(const std::string& host) {
@@ -24,11 +26,8 @@ bool same_secret(std::string_view given, std::string_view expected) {
 bool needs_token(const std::string& path) { return path == "/render" || path == "/jobs" || path.starts_with("/jobs/"); }
 
 bool token_in_query_allowed(const httplib::Request& req) {
-    const std::string& p = req.path;
-    return (req.method == "GET" || req.method == "HEAD") &&
-           (p.ends_with("/stream") || p.ends_with("/events") || p.ends_with("/image.png") || p.ends_with("/image.pfm") ||
-            p.ends_with("/image.exr") || p.ends_with("/image.denoised.png") || p.ends_with("/thumbnail.png") ||
-            p.ends_with("/samples.png"));
+    const Route* route = find_route(req.method, req.path);
+    return route && route->token == TokenPolicy::header_or_query;
 }
 
 std::string check_token(const httplib::Request& req, const std::string& token) {

@@ -18,8 +18,8 @@ bool same_secret(std::string_view given, std::string_view expected);
 
 // Routes that start, cancel or read jobs need the token; the page, presets and /health do not.
 bool needs_token(const std::string& path);
-// Routes that <img>, <a> and EventSource load, which cannot send headers: the token may come
-// as the query parameter `token` there.
+// Whether the route that serves the request takes the token as the query parameter `token`
+// too (its TokenPolicy, http/routes.h): those that <img>, <a> and EventSource load.
 bool token_in_query_allowed(const httplib::Request& req);
 
 // Empty when the request may proceed (no token set, a route that needs none, or the right

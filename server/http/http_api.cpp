@@ -8,6 +8,7 @@
 #include "http/auth.h"
 #include "http/error_response.h"
 #include "http/guarded_server.h"
+#include "http/job_images.h"
 #include "http/job_patch.h"
 #include "http/job_request.h"
 #include "http/job_view.h"
@@ -20,8 +21,6 @@ using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 constexpr auto kPoll = 250ms;  // how often a waiting stream looks at its client and the job
 constexpr auto kPing = 15s;    // SSE comment that keeps proxies from closing an idle stream
-// A jobs list's thumbnails: small enough that a page can list many jobs cheaply.
-constexpr int kThumbnailWidth = 128, kThumbnailHeight = 96;
 
 void send_json(httplib::Response& res, const nlohmann::json& body, int status = 200) {
     res.status = status;
@@ -147,8 +146,9 @@ void HttpApi::release_stream(const std::string& client) {
 
 // multipart/x-mixed-replace: one PNG part per finished pass (the latest frame wins, none is
 // queued), then the closing boundary once the job has ended.
-void HttpApi::stream(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res) {
-    if (!admit_stream(req, res)) return;
+void HttpApi::stream(const Request& req, Response& res) {
+    const auto job = job_or_404(req, res);
+    if (!job || !admit_stream(req, res)) return;
     res.set_chunked_content_provider(
         "multipart/x-mixed-replace; boundary=frame",
         [this, job, sent = uint64_t(0)](size_t, httplib::DataSink& sink) mutable {
@@ -172,8 +172,9 @@ void HttpApi::stream(const httplib::Request& req, const std::shared_ptr<Job>& jo
 }
 
 // Server-Sent Events: the job's status after every pass, then a final `done` event.
-void HttpApi::events(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res) {
-    if (!admit_stream(req, res)) return;
+void HttpApi::events(const Request& req, Response& res) {
+    const auto job = job_or_404(req, res);
+    if (!job || !admit_stream(req, res)) return;
     res.set_chunked_content_provider(
         "text/event-stream",
         [this, job, sent = uint64_t(0), last_write = Clock::now()](size_t, httplib::DataSink& sink) mutable {
@@ -199,9 +200,7 @@ void HttpApi::events(const httplib::Request& req, const std::shared_ptr<Job>& jo
 void HttpApi::install(httplib::Server& server) {
     install_limits(server);
     install_hooks(server);
-    install_job_routes(server);
-    install_image_routes(server);
-    install_other_routes(server);
+    install_routes(server);
 }
 
 void HttpApi::install_limits(httplib::Server& server) const {
@@ -257,126 +256,73 @@ void HttpApi::install_hooks(httplib::Server& server) {
     });
 }
 
-void HttpApi::install_job_routes(httplib::Server& server) {
-    using Req = httplib::Request;
-    using Res = httplib::Response;
-    server.Post("/render", [this](const Req& req, Res& res) { render(req, res); });
-    server.Post("/jobs", [this](const Req& req, Res& res) { submit(req, res); });
-    server.Get("/jobs", [this](const Req&, Res& res) {
-        nlohmann::json list = nlohmann::json::array();
-        for (const auto& job : jobs_.list()) list.push_back(job_status(*job));
-        send_json(res, list);
-    });
-    const std::string job = kJobRoute;
-    server.Get(job, [this](const Req& req, Res& res) {
-        if (auto j = job_or_404(req, res)) send_json(res, job_status(*j));
-    });
-    server.Patch(job, [this](const Req& req, Res& res) { patch(req, res); });
-    server.Delete(job, [this](const Req& req, Res& res) {
-        if (auto j = job_or_404(req, res)) {
-            j->cancel();
-            send_json(res, job_status(*j));
-        }
-    });
-    server.Get(job + "/stream", [this](const Req& req, Res& res) {
-        if (auto j = job_or_404(req, res)) stream(req, j, res);
-    });
-    server.Get(job + "/events", [this](const Req& req, Res& res) {
-        if (auto j = job_or_404(req, res)) events(req, j, res);
-    });
-}
-
-// The denoised preview: made from the frame on request (docs/denoiser.md), never in place of
-// image.png; 429 with Retry-After when the service makes as many as it may.
-void HttpApi::denoised(const std::shared_ptr<Job>& job, httplib::Response& res) {
-    std::shared_ptr<const std::vector<uint8_t>> png;
-    try {
-        png = job->denoised_png(jobs_.denoise_gate());
-    } catch (const ServiceError& e) {
-        return send_error(res, e);
-    }
-    if (!png) return send_error(res, 409, "no pass has finished yet");
-    res.set_content(reinterpret_cast<const char*>(png->data()), png->size(), "image/png");
-}
-
-// A job's latest frame: PNG, its denoised preview, PFM, EXR (with the film's layers), and a
-// thumbnail for lists of jobs.
-void HttpApi::install_image_routes(httplib::Server& server) {
-    using Req = httplib::Request;
-    using Res = httplib::Response;
-    const std::string job = kJobRoute;
-    server.Get(job + "/image.png", [this](const Req& req, Res& res) {
-        auto j = job_or_404(req, res);
-        if (!j) return;
-        const JobSnapshot s = j->snapshot();
-        if (!s.png) return send_error(res, 409, "no pass has finished yet");
-        res.set_content(reinterpret_cast<const char*>(s.png->data()), s.png->size(), "image/png");
-    });
-    server.Get(job + "/image.denoised.png", [this](const Req& req, Res& res) {
-        if (auto j = job_or_404(req, res)) denoised(j, res);
-    });
-    server.Get(job + "/image.pfm", [this](const Req& req, Res& res) {
-        auto j = job_or_404(req, res);
-        if (!j) return;
-        const JobSnapshot s = j->snapshot();
-        if (!s.image) return send_error(res, 409, "no pass has finished yet");
-        const std::vector<uint8_t> pfm = encode_pfm(*s.image);
-        res.set_content(reinterpret_cast<const char*>(pfm.data()), pfm.size(), "image/x-portable-floatmap");
-    });
-    server.Get(job + "/image.exr", [this](const Req& req, Res& res) {
-        auto j = job_or_404(req, res);
-        if (!j) return;
-        const JobSnapshot s = j->snapshot();
-        if (!s.image) return send_error(res, 409, "no pass has finished yet");
-        std::vector<ExrLayer> layers{exr_layer("", *s.image)};
-        if (s.layers) layers.insert(layers.end(), s.layers->begin(), s.layers->end());
-        const std::vector<uint8_t> exr = encode_exr(s.image->width, s.image->height, layers);
-        res.set_content(reinterpret_cast<const char*>(exr.data()), exr.size(), "image/x-exr");
-    });
-    // An adaptive job's camera samples per pixel, grey from 0 (black) to X-Glint-Samples-Max.
-    server.Get(job + "/samples.png", [this](const Req& req, Res& res) {
-        auto j = job_or_404(req, res);
-        if (!j) return;
-        if (!j->settings().adaptive.on()) return send_error(res, 404, "not an adaptive job: every pixel has spp_done samples");
-        const JobSnapshot s = j->snapshot();
-        if (!s.samples_png) return send_error(res, 409, "no pass has finished yet");
-        res.set_header("X-Glint-Samples-Max", std::to_string(s.samples_max));
-        res.set_content(reinterpret_cast<const char*>(s.samples_png->data()), s.samples_png->size(), "image/png");
-    });
-    server.Get(job + "/thumbnail.png", [this](const Req& req, Res& res) {
-        auto j = job_or_404(req, res);
-        if (!j) return;
-        const JobSnapshot s = j->snapshot();
-        if (!s.image) return send_error(res, 409, "no pass has finished yet");
-        const std::vector<uint8_t> png = encode_png(downscale(*s.image, kThumbnailWidth, kThumbnailHeight), j->settings().encoding);
-        res.set_content(reinterpret_cast<const char*>(png.data()), png.size(), "image/png");
-    });
-}
-
-// Presets, health, and the page: the routes without a token.
-void HttpApi::install_other_routes(httplib::Server& server) {
-    using Req = httplib::Request;
-    using Res = httplib::Response;
-    server.Get("/presets", [this](const Req&, Res& res) { send_json(res, list_presets(scenes_)); });
-    server.Get(R"(/presets/([A-Za-z0-9_-]+))", [this](const Req& req, Res& res) {
-        const auto file = preset_path(scenes_, req.matches[1]);
-        if (file.empty()) return send_error(res, 404, "no preset " + std::string(req.matches[1]));
-        const std::vector<uint8_t> text = read_file(file.string(), size_t(16) << 20);
-        res.set_content(reinterpret_cast<const char*>(text.data()), text.size(), "application/json");
-    });
-    server.Get("/health", [this](const Req&, Res& res) {
-        send_json(res, {{"status", "ok"},
-                        {"jobs_running", jobs_.running()},
-                        {"jobs_queued", jobs_.queued()},
-                        {"open_streams", open_streams_.load()},
-                        {"render_threads", pool_.size()},
-                        {"render_batches_waiting", pool_.pending_batches()}});
-    });
-    // Last, so that it only gets what no route above matched.
+void HttpApi::install_routes(httplib::Server& server) {
     if (!std::filesystem::is_directory(config_.web))
         spdlog::warn("web folder {} not found: the page is not served", config_.web.string());
-    server.Get("/.*",
-               [this](const Req& req, Res& res) { serve_static_file(config_.web, req, res); });
+    for (const Route& route : routes()) {
+        const std::string pattern = path_pattern(route);
+        httplib::Server::Handler handler = [this, &route](const Request& req, Response& res) {
+            route.handler(*this, req, res);
+        };
+        switch (route.method) {
+            case Method::get: server.Get(pattern, std::move(handler)); break;
+            case Method::post: server.Post(pattern, std::move(handler)); break;
+            case Method::patch: server.Patch(pattern, std::move(handler)); break;
+            case Method::delete_: server.Delete(pattern, std::move(handler)); break;
+        }
+    }
 }
+
+void HttpApi::list_jobs(const Request&, Response& res) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& job : jobs_.list()) list.push_back(job_status(*job));
+    send_json(res, list);
+}
+
+void HttpApi::show_job(const Request& req, Response& res) {
+    if (auto job = job_or_404(req, res)) send_json(res, job_status(*job));
+}
+
+void HttpApi::cancel(const Request& req, Response& res) {
+    if (auto job = job_or_404(req, res)) {
+        job->cancel();
+        send_json(res, job_status(*job));
+    }
+}
+
+// Whatever the image, an unknown job is 404 and one without a finished pass yet 409.
+void HttpApi::image(const Request& req, Response& res, const JobImage& image) {
+    const auto job = job_or_404(req, res);
+    if (!job) return;
+    try {
+        const JobSnapshot snapshot = job->snapshot();
+        const ImageContent content = image.make({*job, snapshot, jobs_.denoise_gate()});
+        if (!content.bytes) return send_error(res, 409, "no pass has finished yet");
+        for (const auto& [name, value] : content.headers) res.set_header(name, value);
+        res.set_content(reinterpret_cast<const char*>(content.bytes->data()), content.bytes->size(), image.content_type);
+    } catch (const ServiceError& e) {
+        send_error(res, e);
+    }
+}
+
+void HttpApi::presets(const Request&, Response& res) { send_json(res, list_presets(scenes_)); }
+
+void HttpApi::preset(const Request& req, Response& res) {
+    const auto file = preset_path(scenes_, req.matches[1]);
+    if (file.empty()) return send_error(res, 404, "no preset " + std::string(req.matches[1]));
+    const std::vector<uint8_t> text = read_file(file.string(), size_t(16) << 20);
+    res.set_content(reinterpret_cast<const char*>(text.data()), text.size(), "application/json");
+}
+
+void HttpApi::health(const Request&, Response& res) {
+    send_json(res, {{"status", "ok"},
+                    {"jobs_running", jobs_.running()},
+                    {"jobs_queued", jobs_.queued()},
+                    {"open_streams", open_streams_.load()},
+                    {"render_threads", pool_.size()},
+                    {"render_batches_waiting", pool_.pending_batches()}});
+}
+
+void HttpApi::page(const Request& req, Response& res) { serve_static_file(config_.web, req, res); }
 
 }  // namespace glint

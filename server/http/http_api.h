@@ -1,5 +1,6 @@
-// The HTTP API of `glint serve` (routes documented in README.md) on cpp-httplib. Handlers
-// never wait on rendering: they read job snapshots, and the streaming responses poll them.
+// The HTTP API of `glint serve` on cpp-httplib: the handlers of its routes (http/routes.h,
+// documented in README.md). Handlers never wait on rendering: they read job snapshots, and the
+// streaming responses poll them.
 #pragma once
 
 #include <atomic>
@@ -11,12 +12,13 @@
 #include <httplib.h>
 
 #include "http/http_config.h"
+#include "http/routes.h"
 #include "service/job_manager.h"
 #include "service/service_config.h"
 
 namespace glint {
 
-class HttpApi {
+class HttpApi final : public RouteHandlers {
 public:
     // `service` for the scenes folder and what one job may ask for.
     // `assets`: the server's cache of decoded files, shared by every request.
@@ -29,15 +31,20 @@ public:
 private:
     void install_limits(httplib::Server& server) const;
     void install_hooks(httplib::Server& server);
-    void install_job_routes(httplib::Server& server);
-    void install_image_routes(httplib::Server& server);
-    void install_other_routes(httplib::Server& server);
-    void submit(const httplib::Request& req, httplib::Response& res);
-    void render(const httplib::Request& req, httplib::Response& res);
-    void patch(const httplib::Request& req, httplib::Response& res);
-    void stream(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res);
-    void events(const httplib::Request& req, const std::shared_ptr<Job>& job, httplib::Response& res);
-    void denoised(const std::shared_ptr<Job>& job, httplib::Response& res);
+    void install_routes(httplib::Server& server);
+    void render(const Request& req, Response& res) override;
+    void submit(const Request& req, Response& res) override;
+    void list_jobs(const Request& req, Response& res) override;
+    void show_job(const Request& req, Response& res) override;
+    void patch(const Request& req, Response& res) override;
+    void cancel(const Request& req, Response& res) override;
+    void stream(const Request& req, Response& res) override;
+    void events(const Request& req, Response& res) override;
+    void image(const Request& req, Response& res, const JobImage& image) override;
+    void presets(const Request& req, Response& res) override;
+    void preset(const Request& req, Response& res) override;
+    void health(const Request& req, Response& res) override;
+    void page(const Request& req, Response& res) override;
     std::shared_ptr<Job> job_or_404(const httplib::Request& req, httplib::Response& res) const;
     std::shared_ptr<Job> accept(const httplib::Request& req, httplib::Response& res);
     bool admit_stream(const httplib::Request& req, httplib::Response& res);

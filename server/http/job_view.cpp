@@ -2,10 +2,26 @@
 
 #include <chrono>
 
+#include "http/routes.h"
 #include "service/job_state.h"
 #include "service/progress_json.h"
 
 namespace glint {
+
+namespace {
+
+// The URL of each route the table names for a job's status.
+nlohmann::json job_urls(const Job& job) {
+    nlohmann::json urls = nlohmann::json::object();
+    for (const Route& route : routes()) {
+        const StatusUrl& url = route.url;
+        if (!url.name.empty() && (url.listed_for == StatusUrl::For::every_job || job.settings().adaptive.on()))
+            urls[url.name] = route_url(route, job.id());
+    }
+    return urls;
+}
+
+}  // namespace
 
 std::string job_url(const std::string& id) { return "/jobs/" + id; }
 
@@ -13,7 +29,6 @@ nlohmann::json job_status(const Job& job) {
     const JobSnapshot s = job.snapshot();
     const Progress& p = s.progress;
     const double eta = s.state == JobState::running ? eta_seconds(p) : 0;
-    const std::string self = job_url(job.id());
     nlohmann::json j = progress_json(p);
     j.update({
         {"id", job.id()},
@@ -22,15 +37,7 @@ nlohmann::json job_status(const Job& job) {
         {"height", job.settings().height},
         {"eta", eta},
         {"frame", s.frame},
-        {"urls",
-         {{"self", self},
-          {"png", self + "/image.png"},
-          {"denoised", self + "/image.denoised.png"},
-          {"pfm", self + "/image.pfm"},
-          {"exr", self + "/image.exr"},
-          {"stream", self + "/stream"},
-          {"events", self + "/events"},
-          {"thumbnail", self + "/thumbnail.png"}}},
+        {"urls", job_urls(job)},
         {"priority", job.priority()},
         {"stop_reason", s.stop ? nlohmann::json(stop_reason_name(*s.stop)) : nlohmann::json()},
         {"time_limit", job.settings().time_limit},
@@ -48,7 +55,6 @@ nlohmann::json job_status(const Job& job) {
     if (job.settings().adaptive.on()) {
         j["adaptive"] = {{"threshold", job.settings().adaptive.threshold}, {"min_spp", job.settings().adaptive.min_spp},
                          {"samples_max", s.samples_max}};
-        j["urls"]["samples"] = self + "/samples.png";
     }
     if (s.parts)
         j["parts"] = {{"queued", s.parts->queued}, {"running", s.parts->running}, {"done", s.parts->done},

@@ -1,5 +1,5 @@
 // A job as the API shows it (README, "GET /jobs/{id}"): its state, progress and the URLs of
-// its routes. The service's Job knows no URLs; they are named here, beside the routes.
+// its routes. The service's Job knows no URLs; they come from the route table (http/routes.h).
 #pragma once
 
 #include <string>
@@ -12,8 +12,6 @@ namespace glint {
 
 // The route of job `id`, "/jobs/{id}"; its image, stream and events routes hang below it.
 std::string job_url(const std::string& id);
-// The URL pattern of a job's route, capturing the id: what job_url makes.
-inline constexpr const char* kJobRoute = R"(/jobs/([0-9a-f]{16}))";
 
 nlohmann::json job_status(const Job& job);
 
