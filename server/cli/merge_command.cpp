@@ -3,8 +3,8 @@
 
 #include "base/files.h"
 #include "cli/commands.h"
-#include "io/exr_file.h"
-#include "io/partial_file.h"
+#include "assembly/film_exr.h"
+#include "assembly/partial_file.h"
 
 namespace glint {
 namespace {

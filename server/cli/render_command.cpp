@@ -14,12 +14,12 @@
 #include "cli/commands.h"
 #include "cli/option_range.h"
 #include "cli/progress_bar.h"
-#include "io/exr_file.h"
+#include "assembly/film_exr.h"
 #include "denoise/denoiser.h"
-#include "io/film_overrides.h"
-#include "io/fingerprint.h"
-#include "io/partial_file.h"
-#include "io/scene_loader.h"
+#include "assembly/film_overrides.h"
+#include "assembly/fingerprint.h"
+#include "assembly/partial_file.h"
+#include "assembly/scene_loader.h"
 
 namespace glint {
 namespace {

@@ -6,7 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "denoise/denoiser.h"
-#include "io/fingerprint.h"
+#include "assembly/fingerprint.h"
 #include "service/errors.h"
 #include "service/priority.h"
 

@@ -10,10 +10,10 @@
 #include <mutex>
 #include <string>
 
-#include "io/exr_file.h"
+#include "assembly/film_exr.h"
 #include "denoise/half_buffers.h"
-#include "io/partial_file.h"
-#include "io/scene_loader.h"
+#include "assembly/partial_file.h"
+#include "assembly/scene_loader.h"
 #include "render/renderer.h"
 #include "service/denoise_gate.h"
 #include "service/job_state.h"

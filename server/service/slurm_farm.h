@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/partial_file.h"
+#include "assembly/partial_file.h"
 #include "render/settings.h"
 #include "service/service_config.h"
 

@@ -9,9 +9,9 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "io/asset_cache.h"
-#include "io/film_overrides.h"
-#include "io/scene_limits.h"
+#include "assembly/asset_cache.h"
+#include "assembly/film_overrides.h"
+#include "assembly/scene_limits.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 

@@ -1,4 +1,4 @@
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 
 #include <nlohmann/json.hpp>
 
