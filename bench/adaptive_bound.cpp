@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 #include "render/renderer.h"
 
 using namespace glint;

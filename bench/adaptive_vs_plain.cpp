@@ -13,7 +13,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 #include "render/renderer.h"
 
 using namespace glint;

@@ -17,10 +17,10 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "assembly/scene_loader.h"
 #include "base/files.h"
 #include "denoise/denoiser.h"
 #include "io/image_io.h"
-#include "io/scene_loader.h"
 #include "reference_image.h"
 #include "render/renderer.h"
 

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <string>
 
+#include "assembly/scene_loader.h"
 #include "base/image.h"
-#include "io/scene_loader.h"
 
 namespace glint {
 

@@ -293,7 +293,7 @@ def texture_lookup(value, folder, usage):
 
 
 def material_fields(fields, m, folder):
-    """glint's material_fields (core/io/scene_loader.cpp): `fields` over m; a new type brings its
+    """glint's material_fields (core/assembly/scene_loader.cpp): `fields` over m; a new type brings its
     defaults for every field but the emission, the cut-out and the normal map."""
     m = json.loads(json.dumps(m))
     if "type" in fields and fields["type"] != m["type"]:

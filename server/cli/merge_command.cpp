@@ -1,10 +1,10 @@
 // `glint merge`: one image from the partial files of a job split over machines.
 #include <cstdio>
 
+#include "assembly/film_exr.h"
+#include "assembly/partial_file.h"
 #include "base/files.h"
 #include "cli/commands.h"
-#include "io/exr_file.h"
-#include "io/partial_file.h"
 
 namespace glint {
 namespace {

@@ -11,7 +11,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "io/film_overrides.h"
+#include "assembly/film_overrides.h"
 
 namespace glint {
 
@@ -29,7 +29,7 @@ OptionRange numbers_from(double min);
 // The same range for the same kind of option in every command.
 OptionRange thread_count();       // [0, ThreadPool::kMaxThreads], 0: one per core
 OptionRange checkpoint_seconds();  // [0, 3600], 0: after every pass
-OptionRange film_option(FilmInteger field);  // as a scene file's film field (io/film_overrides.h)
+OptionRange film_option(FilmInteger field);  // as a scene file's film field (assembly/film_overrides.h)
 
 // Checks `option` against `range` and shows the range in its --help line.
 CLI::Option* in_range(CLI::Option* option, const OptionRange& range);

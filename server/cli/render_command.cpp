@@ -9,16 +9,16 @@
 
 #include <spdlog/spdlog.h>
 
+#include "assembly/film_exr.h"
+#include "assembly/film_overrides.h"
+#include "assembly/fingerprint.h"
+#include "assembly/partial_file.h"
+#include "assembly/scene_loader.h"
 #include "base/files.h"
 #include "cli/commands.h"
 #include "cli/option_range.h"
 #include "cli/progress_bar.h"
-#include "io/exr_file.h"
 #include "denoise/denoiser.h"
-#include "io/film_overrides.h"
-#include "io/fingerprint.h"
-#include "io/partial_file.h"
-#include "io/scene_loader.h"
 #include "service/checkpointer.h"
 
 namespace glint {

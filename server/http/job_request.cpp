@@ -58,20 +58,6 @@ std::optional<bool> boolean(const nlohmann::json& request, const char* key) {
     return v.get<bool>();
 }
 
-// [x0, y0, x1, y1], as film.region in a scene.
-std::optional<Region> region(const nlohmann::json& request, const SceneLimits& limits) {
-    if (!request.contains("region")) return std::nullopt;
-    const nlohmann::json& v = request.at("region");
-    const auto in_range = [&](const nlohmann::json& e) {
-        return e.is_number_integer() && e.get<int64_t>() >= 0 && e.get<int64_t>() <= limits.max_dimension;
-    };
-    if (!v.is_array() || v.size() != 4 || !std::all_of(v.begin(), v.end(), in_range))
-        throw InvalidRequest("must be an array [x0, y0, x1, y1] of 4 integers in [0, " +
-                                 std::to_string(limits.max_dimension) + "]",
-                             "region");
-    return Region{v[0].get<int>(), v[1].get<int>(), v[2].get<int>(), v[3].get<int>()};
-}
-
 // The request's value of `field` if it has one, an integer within the field's range.
 std::optional<int64_t> film_integer(const nlohmann::json& request, FilmInteger field,
                                     const SceneLimits& limits) {
@@ -84,25 +70,6 @@ std::optional<int64_t> film_integer(const nlohmann::json& request, FilmInteger f
     return v.get<int64_t>();
 }
 
-// {"threshold": T, "min_spp": N}, as film.adaptive in a scene; check_settings() bounds them.
-void adaptive(const nlohmann::json& request, const SceneLimits& limits, FilmOverrides& o) {
-    if (!request.contains("adaptive")) return;
-    const nlohmann::json& v = request.at("adaptive");
-    if (!v.is_object()) throw InvalidRequest("must be an object {\"threshold\": T, \"min_spp\": N}", "adaptive");
-    for (const auto& item : v.items())
-        if (item.key() != "threshold" && item.key() != "min_spp")
-            throw InvalidRequest("unknown field (expected one of: threshold, min_spp)", "adaptive." + item.key());
-    if (v.contains("threshold")) {
-        if (!v.at("threshold").is_number()) throw InvalidRequest("must be a number", "adaptive.threshold");
-        o.adaptive_threshold = v.at("threshold").get<double>();
-    }
-    if (!v.contains("min_spp")) return;
-    const IntegerRange range = adaptive_min_spp_range(limits);
-    if (!v.at("min_spp").is_number_integer() || !range.contains(v.at("min_spp").get<int64_t>()))
-        throw InvalidRequest("must be an integer in " + range.text() + " (0: automatic)", "adaptive.min_spp");
-    o.adaptive_min_spp = uint32_t(v.at("min_spp").get<int64_t>());
-}
-
 FilmOverrides overrides_of(const nlohmann::json& request, const SceneLimits& limits) {
     FilmOverrides o;
     if (auto w = film_integer(request, FilmInteger::width, limits)) o.width = int(*w);
@@ -111,9 +78,12 @@ FilmOverrides overrides_of(const nlohmann::json& request, const SceneLimits& lim
     if (auto seed = film_integer(request, FilmInteger::seed, limits)) o.seed = uint64_t(*seed);
     o.time_limit = number(request, "time_limit");
     o.target_error = number(request, "target_error");
-    o.region = region(request, limits);
+    // Read as a scene's film.region and film.adaptive are, with errors naming the whole field.
+    if (request.contains("region"))
+        o.region = load_checked([&] { return parse_region(request.at("region"), "region", limits, FieldErrors::whole_field); });
     o.aovs = boolean(request, "aovs");
-    adaptive(request, limits, o);
+    if (request.contains("adaptive"))
+        load_checked([&] { parse_adaptive(request.at("adaptive"), "adaptive", limits, FieldErrors::whole_field, o); });
     return o;
 }
 

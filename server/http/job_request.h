@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 #include "service/errors.h"
 #include "service/job_spec.h"
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <functional>
 
-#include "io/partial_file.h"
+#include "assembly/partial_file.h"
 #include "render/renderer.h"
 
 namespace glint {

@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/partial_file.h"
+#include "assembly/partial_file.h"
 #include "render/settings.h"
 #include "service/job_spec.h"
 

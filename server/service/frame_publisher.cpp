@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "assembly/film_exr.h"
+
 namespace glint {
 namespace {
 

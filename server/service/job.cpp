@@ -2,7 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
-#include "io/fingerprint.h"
+#include "assembly/fingerprint.h"
 #include "service/local_runner.h"
 #include "service/priority.h"
 

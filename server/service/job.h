@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 #include "render/renderer.h"
 #include "service/denoise_gate.h"
 #include "service/denoised_preview.h"

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 
 namespace glint {
 

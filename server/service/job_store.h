@@ -8,7 +8,7 @@
 //                       what GET /jobs/{id} shows (progress as service/progress_json.h writes
 //                       it; the last two absent in a store from before they were kept)
 //   checkpoint.glntpart the film after a whole pass (samples [first, end) of every pixel), in
-//                       the partial-file format of core/io/partial_file.h (fingerprint, checksum)
+//                       the partial-file format of core/assembly/partial_file.h (fingerprint, checksum)
 //   final.glntpart      the film as the job ended (a cancelled job's last pass may be partial)
 //   farm.json           a job rendered on a farm: its Slurm submission (service/slurm_farm.h)
 // Every file is written atomically (core/base/files.h): a crash leaves the old file or the new one.
@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "io/partial_file.h"
+#include "assembly/partial_file.h"
 #include "render/renderer.h"
 #include "service/job_state.h"
 #include "service/service_config.h"

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <string>
 
-#include "io/asset_cache.h"
-#include "io/scene_limits.h"
+#include "assembly/asset_cache.h"
+#include "assembly/scene_limits.h"
 
 namespace glint {
 
@@ -67,7 +67,7 @@ struct ServiceConfig {
     // shares this process's memory and a job keeps its film (128 bytes a pixel) in it.
     SceneLimits scene{
         .max_dimension = 4096, .max_pixels = int64_t(4096) * 4096, .max_spp = 1u << 16};
-    // Bytes of decoded texture and environment files kept between jobs (io/asset_cache.h), so
+    // Bytes of decoded texture and environment files kept between jobs (assembly/asset_cache.h), so
     // that the jobs of one scene decode its images and build its environment's distribution once.
     size_t asset_cache_bytes = AssetCache::kDefaultBytes;
     StoreConfig store;

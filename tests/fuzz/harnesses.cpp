@@ -10,13 +10,13 @@
 
 #include <httplib.h>
 
+#include "assembly/fingerprint.h"
+#include "assembly/partial_file.h"
+#include "assembly/scene_loader.h"
 #include "http/auth.h"
 #include "http/job_patch.h"
 #include "http/job_request.h"
-#include "io/fingerprint.h"
 #include "io/obj_loader.h"
-#include "io/partial_file.h"
-#include "io/scene_loader.h"
 #include "io/texture_file.h"
 #include "service/priority.h"
 #include "service/service_config.h"

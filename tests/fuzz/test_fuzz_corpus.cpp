@@ -7,11 +7,11 @@
 #include <fstream>
 #include <iterator>
 
-#include "io/fingerprint.h"
+#include "assembly/fingerprint.h"
+#include "assembly/partial_file.h"
+#include "assembly/scene_loader.h"
 #include "fuzz/harnesses.h"
 #include "http/job_request.h"
-#include "io/partial_file.h"
-#include "io/scene_loader.h"
 #include "service/service_config.h"
 
 namespace glint {

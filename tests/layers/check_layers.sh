@@ -5,8 +5,10 @@
 #   tests/layers/check_layers.sh [ROOT]      prints the graph's summary; exits 1 on a violation
 set -uo pipefail
 root=${1:-$(cd "$(dirname "$0")/../.." && pwd)}
-# Bottom to top. The service sits on the whole library; the command line on the HTTP layer.
-layers=(core/base core/shapes core/accel core/scene core/render core/io core/denoise
+# Bottom to top. File formats (io) sit below the renderer and know nothing of it; what combines
+# formats with the renderer (scene loading, partial files, a film's EXR layers) is assembly's.
+# The service sits on the whole library; the command line on the HTTP layer.
+layers=(core/base core/shapes core/accel core/scene core/io core/render core/assembly core/denoise
         server/service server/http server/cli)
 
 rank() {  # rank FOLDER: the layer's position, or nothing if FOLDER is not a layer

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 #include "support/image_files.h"
 
 namespace glint::testing {

@@ -3,8 +3,8 @@
 
 #include <string>
 
+#include "assembly/scene_loader.h"
 #include "render/renderer.h"
-#include "io/scene_loader.h"
 
 namespace glint::testing {
 

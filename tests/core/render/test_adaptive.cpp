@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/partial_file.h"
+#include "assembly/partial_file.h"
 #include "support/test_support.h"
 
 namespace glint {

@@ -5,9 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "assembly/scene_loader.h"
 #include "base/files.h"
 #include "base/sampling.h"
-#include "io/scene_loader.h"
 #include "render/strategies.h"
 #include "support/test_support.h"
 

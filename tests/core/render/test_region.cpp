@@ -5,8 +5,8 @@
 
 #include <cstring>
 
+#include "assembly/fingerprint.h"
 #include "base/files.h"
-#include "io/fingerprint.h"
 #include "io/image_io.h"
 #include "render/strategies.h"
 #include "support/test_support.h"

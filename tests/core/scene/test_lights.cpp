@@ -2,9 +2,9 @@
 // the shading point, and sample/pdf consistency that MIS depends on.
 #include <gtest/gtest.h>
 
-#include "scene/lights.h"
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 #include "base/sampling.h"
+#include "scene/lights.h"
 
 namespace glint {
 namespace {

@@ -5,9 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "assembly/film_exr.h"
 #include "denoise/denoiser.h"
 #include "http/job_view.h"
-#include "io/exr_file.h"
 #include "support/http_server_fixture.h"
 #include "support/raw_http.h"
 #include "support/test_support.h"

@@ -12,7 +12,7 @@
 #include "http/auth.h"
 #include "http/job_view.h"
 #include "http/routes.h"
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 
 namespace glint {
 namespace {

@@ -7,7 +7,7 @@
 #include <mutex>
 #include <thread>
 
-#include "io/fingerprint.h"
+#include "assembly/fingerprint.h"
 #include "io/image_io.h"
 #include "service/errors.h"
 #include "service/job.h"

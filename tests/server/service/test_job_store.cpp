@@ -19,11 +19,11 @@
 
 #include <httplib.h>
 
+#include "assembly/fingerprint.h"
+#include "assembly/partial_file.h"
 #include "base/files.h"
 #include "http/job_request.h"
-#include "io/fingerprint.h"
 #include "io/image_io.h"
-#include "io/partial_file.h"
 #include "service/service_config.h"
 #include "support/test_support.h"
 

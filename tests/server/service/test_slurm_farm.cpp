@@ -3,7 +3,7 @@
 // ends it, and a part's failure is its message.
 #include <gtest/gtest.h>
 
-#include "io/fingerprint.h"
+#include "assembly/fingerprint.h"
 #include "service/slurm_farm.h"
 #include "support/image_files.h"
 #include "support/test_support.h"

@@ -1,4 +1,4 @@
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 
 #include <nlohmann/json.hpp>
 
@@ -105,6 +105,44 @@ Vec3 unit_direction(const At& at, const Vec3& v, const char* what) {
     return normalize(v / largest);
 }
 
+// Runs parse(); with whole-field errors, a SceneError it throws becomes `whole`, everything the
+// value must be, at the value's own path.
+template <typename F>
+auto whole_field(const At& at, FieldErrors errors, const std::string& whole, F&& parse) -> decltype(parse()) {
+    if (errors == FieldErrors::at_fault) return parse();
+    try {
+        return parse();
+    } catch (const SceneError&) {
+        at.fail(whole);
+    }
+}
+
+// [x0, y0, x1, y1]: pixels, rows from the top; check_region() checks it against the size.
+Region region_of(const At& at, const SceneLimits& limits, FieldErrors errors) {
+    const std::string whole =
+        "must be an array [x0, y0, x1, y1] of 4 integers in [0, " + std::to_string(limits.max_dimension) + "]";
+    return whole_field(at, errors, whole, [&] {
+        if (!at.value.is_array() || at.value.size() != 4) at.fail("must be an array [x0, y0, x1, y1] of 4 integers");
+        int v[4];
+        for (size_t i = 0; i < 4; ++i) v[i] = int(at.item(i).integer(0, limits.max_dimension));
+        return Region{v[0], v[1], v[2], v[3]};
+    });
+}
+
+// {"threshold": T, "min_spp": N}: the fields given, into `o`; check_settings() bounds the threshold.
+void adaptive_fields(const At& at, const SceneLimits& limits, FieldErrors errors, FilmOverrides& o) {
+    whole_field(at, errors, "must be an object {\"threshold\": T, \"min_spp\": N}", [&] {
+        if (!at.value.is_object()) at.fail("must be an object");
+    });
+    at.expect_object({"threshold", "min_spp"});
+    if (at.has("threshold")) o.adaptive_threshold = at["threshold"].number();
+    if (!at.has("min_spp")) return;
+    const At min_spp = at["min_spp"];
+    const IntegerRange range = adaptive_min_spp_range(limits);
+    o.adaptive_min_spp = uint32_t(whole_field(min_spp, errors, "must be an integer in " + range.text() + " (0: automatic)",
+                                              [&] { return min_spp.integer(range.min, range.max); }));
+}
+
 class SceneParser {
 public:
     SceneParser(const std::filesystem::path& folder, const SceneLimits& limits, AssetCache* assets)
@@ -177,28 +215,19 @@ private:
         // Checked with the rest by check_settings(), as the command line's and a request's are.
         if (at.has("time_limit")) s.time_limit = at["time_limit"].number();
         if (at.has("target_error")) s.target_error = at["target_error"].number();
-        if (at.has("region")) s.region = region(at["region"]);
+        if (at.has("region")) s.region = region_of(at["region"], limits_, FieldErrors::at_fault);
         if (at.has("aovs")) s.aovs = at["aovs"].boolean();
         if (at.has("adaptive")) s.adaptive = adaptive(at["adaptive"]);
         return s;
     }
 
-    // {"threshold": T, "min_spp": N}; check_settings() bounds the threshold.
     AdaptiveSettings adaptive(const At& at) const {
-        at.expect_object({"threshold", "min_spp"});
+        FilmOverrides given;
+        adaptive_fields(at, limits_, FieldErrors::at_fault, given);
         AdaptiveSettings a;
-        if (at.has("threshold")) a.threshold = at["threshold"].number();
-        const IntegerRange range = adaptive_min_spp_range(limits_);
-        if (at.has("min_spp")) a.min_spp = uint32_t(at["min_spp"].integer(range.min, range.max));
+        a.threshold = given.adaptive_threshold.value_or(a.threshold);
+        a.min_spp = given.adaptive_min_spp.value_or(a.min_spp);
         return a;
-    }
-
-    // [x0, y0, x1, y1]: pixels, rows from the top; check_region() checks it against the size.
-    Region region(const At& at) const {
-        if (!at.value.is_array() || at.value.size() != 4) at.fail("must be an array [x0, y0, x1, y1] of 4 integers");
-        int v[4];
-        for (size_t i = 0; i < 4; ++i) v[i] = int(at.item(i).integer(0, limits_.max_dimension));
-        return {v[0], v[1], v[2], v[3]};
     }
 
     int64_t film_integer(const At& film, FilmInteger field) const {
@@ -739,6 +768,16 @@ LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& lim
     }
     const auto own = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
     return parse_scene(std::string(bytes.begin(), bytes.end()), folder.empty() ? own : folder, limits, assets);
+}
+
+Region parse_region(const nlohmann::json& value, const std::string& path, const SceneLimits& limits,
+                    FieldErrors errors) {
+    return region_of(At{value, path}, limits, errors);
+}
+
+void parse_adaptive(const nlohmann::json& value, const std::string& path, const SceneLimits& limits,
+                    FieldErrors errors, FilmOverrides& overrides) {
+    adaptive_fields(At{value, path}, limits, errors, overrides);
 }
 
 }  // namespace glint

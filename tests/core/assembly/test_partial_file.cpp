@@ -4,8 +4,8 @@
 
 #include <cstring>
 
-#include "io/fingerprint.h"
-#include "io/partial_file.h"
+#include "assembly/fingerprint.h"
+#include "assembly/partial_file.h"
 #include "support/test_support.h"
 
 namespace glint {

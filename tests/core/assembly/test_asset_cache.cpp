@@ -7,8 +7,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include "io/asset_cache.h"
-#include "io/scene_loader.h"
+#include "assembly/asset_cache.h"
+#include "assembly/scene_loader.h"
 #include "support/image_files.h"
 #include "support/scene_folder.h"
 

@@ -1,4 +1,4 @@
-#include "io/fingerprint.h"
+#include "assembly/fingerprint.h"
 
 #include "render/strategies.h"
 

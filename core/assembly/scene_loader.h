@@ -9,9 +9,9 @@
 
 #include <nlohmann/json_fwd.hpp>
 
-#include "io/asset_cache.h"
-#include "io/film_overrides.h"
-#include "io/scene_limits.h"
+#include "assembly/asset_cache.h"
+#include "assembly/film_overrides.h"
+#include "assembly/scene_limits.h"
 #include "render/settings.h"
 #include "scene/scene.h"
 
@@ -37,5 +37,20 @@ LoadedScene scene_from_json(const nlohmann::json& root, const std::filesystem::p
 // Mesh files are looked up in `folder`, or the scene file's own folder when it is empty.
 LoadedScene load_scene(const std::filesystem::path& file, const SceneLimits& limits = {},
                        const std::filesystem::path& folder = {}, AssetCache* assets = nullptr);
+
+// How the errors of film.region and film.adaptive read. A scene file's say what is wrong where
+// ("film.region[2]: must be in [0, 16384]"); a preset request's say everything the field must
+// be, at the field ("region: must be an array [x0, y0, x1, y1] of 4 integers in [0, 16384]"),
+// for a client that reads the message without the scene format at hand.
+enum class FieldErrors { at_fault, whole_field };
+
+// film.region, [x0, y0, x1, y1], from `value` at JSON path `path`; throws SceneError. The one
+// parser of it, for a scene's film and a preset request alike.
+Region parse_region(const nlohmann::json& value, const std::string& path, const SceneLimits& limits,
+                    FieldErrors errors);
+// The fields of film.adaptive, {"threshold": T, "min_spp": N}, that `value` gives, into
+// `overrides`; throws SceneError. check_settings() bounds the threshold.
+void parse_adaptive(const nlohmann::json& value, const std::string& path, const SceneLimits& limits,
+                    FieldErrors errors, FilmOverrides& overrides);
 
 }  // namespace glint

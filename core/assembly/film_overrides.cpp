@@ -1,4 +1,4 @@
-#include "io/film_overrides.h"
+#include "assembly/film_overrides.h"
 
 #include <cmath>
 

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 #include "support/image_files.h"
 
 namespace glint {

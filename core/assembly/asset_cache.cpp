@@ -1,4 +1,4 @@
-#include "io/asset_cache.h"
+#include "assembly/asset_cache.h"
 
 #include <system_error>
 

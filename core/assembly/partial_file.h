@@ -12,7 +12,7 @@
 //   24      4     uint32 end sample (exclusive)
 //   28      4     uint32 PNG encoding (0 gamma 2.2, 1 sRGB)
 //   32      4     uint32 sampler version (kSamplerVersion, sampler.h)
-//   36      8     uint64 fingerprint of scene and settings (core/io/fingerprint.h)
+//   36      8     uint64 fingerprint of scene and settings (core/assembly/fingerprint.h)
 //   44      4     uint32 flags: bit 0 set if the film has AOVs (render/aov.h); no other bits
 //   48      8     uint64 light paths traced per pixel, when counted apart from the camera
 //                 samples (adaptive sampling with light tracing, Film::light_paths); else 0
@@ -48,7 +48,7 @@ struct Partial {
 };
 
 // The film of `render` holding samples [first_sample, first_sample + spp_done) of every pixel;
-// `fingerprint` is that of its scene and settings (io/fingerprint.h). What `glint render
+// `fingerprint` is that of its scene and settings (assembly/fingerprint.h). What `glint render
 // --partial` writes and what the service's store checkpoints and keeps when a job ends.
 Partial partial_of(const RenderJob& render, uint64_t fingerprint, uint32_t spp_done);
 

@@ -1,4 +1,4 @@
-#include "io/partial_file.h"
+#include "assembly/partial_file.h"
 
 #include <stdexcept>
 
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <string>
 
-#include "io/fingerprint.h"
+#include "assembly/fingerprint.h"
 
 namespace glint {
 namespace {

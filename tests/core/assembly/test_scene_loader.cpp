@@ -9,8 +9,8 @@
 
 #include <cstdio>
 
+#include "assembly/scene_loader.h"
 #include "base/files.h"
-#include "io/scene_loader.h"
 
 namespace glint {
 namespace {

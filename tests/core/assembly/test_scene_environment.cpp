@@ -8,8 +8,8 @@
 #include <cmath>
 #include <limits>
 
-#include "io/fingerprint.h"
-#include "io/scene_loader.h"
+#include "assembly/fingerprint.h"
+#include "assembly/scene_loader.h"
 #include "support/image_files.h"
 #include "support/scene_folder.h"
 #include "support/test_support.h"

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "io/scene_loader.h"
+#include "assembly/scene_loader.h"
 #include "support/image_files.h"
 #include "support/scene_folder.h"
 #include "support/test_support.h"

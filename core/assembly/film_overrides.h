@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "io/scene_limits.h"
+#include "assembly/scene_limits.h"
 #include "render/settings.h"
 
 namespace glint {

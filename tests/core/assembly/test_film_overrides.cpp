@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "io/film_overrides.h"
+#include "assembly/film_overrides.h"
 
 namespace glint {
 namespace {
