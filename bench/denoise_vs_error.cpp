@@ -20,6 +20,7 @@
 #include "assembly/scene_loader.h"
 #include "base/files.h"
 #include "denoise/denoiser.h"
+#include "denoise/denoiser_config.h"
 #include "io/image_io.h"
 #include "reference_image.h"
 #include "render/renderer.h"
@@ -66,7 +67,7 @@ void measure(const Options& o, const RenderJob& job, uint32_t spp, bool first_se
              ThreadPool& pool, Rung& rung) {
     const double cpu0 = cpu_seconds();
     const auto wall0 = std::chrono::steady_clock::now();
-    const Image denoised = denoise(job.film(), o.config, pool);
+    const Image denoised = denoise_with(half_buffers(job.film()), o.config, pool);
     rung.denoise_wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     rung.denoise_cpu += cpu_seconds() - cpu0;
     const Image image = job.film().mean();

@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "denoise/box_filter.h"
+#include "denoise/denoiser_config.h"
 #include "denoise/nl_means.h"
 
 namespace glint {
@@ -121,11 +122,11 @@ NlMeansOutput filter_half(const HalfBuffers& h, const Planes& half, const std::v
 
 }  // namespace
 
-Image denoise(const Film& film, const DenoiserConfig& config, ThreadPool& pool) {
-    return denoise(half_buffers(film), config, pool);
-}
+Image denoise(const Film& film, ThreadPool& pool) { return denoise_with(half_buffers(film), DenoiserConfig{}, pool); }
 
-Image denoise(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPool& pool) {
+Image denoise(const HalfBuffers& halves, ThreadPool& pool) { return denoise_with(halves, DenoiserConfig{}, pool); }
+
+Image denoise_with(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPool& pool) {
     const DenoiserConfig usable = usable_config(halves, config);
     const bool features = halves.has_features();
     const NlMeansOutput fa = filter_half(halves, halves.a, features ? &halves.features_a : nullptr, usable, pool);

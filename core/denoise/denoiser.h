@@ -10,16 +10,16 @@
 
 #include "base/image.h"
 #include "base/thread_pool.h"
-#include "denoise/denoiser_config.h"
 #include "denoise/half_buffers.h"
 #include "render/film.h"
 
 namespace glint {
 
-// The film's image, denoised; bit-identical for any pool size. Finite wherever the film is.
-Image denoise(const Film& film, const DenoiserConfig& config, ThreadPool& pool);
+// The film's image, denoised with the denoiser's own settings (denoiser_config.h's defaults);
+// bit-identical for any pool size. Finite wherever the film is.
+Image denoise(const Film& film, ThreadPool& pool);
 // The same from what the denoiser reads of a film, kept where the film goes on changing (a
 // running job's frame).
-Image denoise(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPool& pool);
+Image denoise(const HalfBuffers& halves, ThreadPool& pool);
 
 }  // namespace glint

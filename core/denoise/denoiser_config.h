@@ -1,7 +1,14 @@
-// The denoiser's parameters (docs/denoiser.md explains each against the paper it follows).
+// The denoiser's parameters (docs/denoiser.md explains each against the paper it follows), and
+// the denoiser run with others than its own. Only bench/denoise_vs_error, which tuned them, and
+// the tests that compare settings change them: the service and glint render call denoise()
+// (denoiser.h), which has no settings to pass.
 #pragma once
 
 #include <vector>
+
+#include "base/image.h"
+#include "base/thread_pool.h"
+#include "denoise/half_buffers.h"
 
 namespace glint {
 
@@ -56,5 +63,8 @@ struct DenoiserConfig {
     // a normal or albedo that differs by less than 3% of its range is taken as the same.
     float feature_floor = 1e-3f;
 };
+
+// denoise() with `config` for its settings.
+Image denoise_with(const HalfBuffers& halves, const DenoiserConfig& config, ThreadPool& pool);
 
 }  // namespace glint

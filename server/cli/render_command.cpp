@@ -94,7 +94,7 @@ void write_outputs(const RenderJob& job, uint64_t print, const Outputs& out, Thr
     if (!out.png.empty()) write_file(out.png, encode_png(image, job.settings().encoding));
     std::vector<ExrLayer> extra;
     if (!out.denoised.empty()) {
-        const Image denoised = denoise(job.film(), DenoiserConfig{}, pool);
+        const Image denoised = denoise(job.film(), pool);
         write_file(out.denoised, encode_png(denoised, job.settings().encoding));
         extra.push_back(exr_layer("denoised", denoised));
     }

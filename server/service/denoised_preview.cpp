@@ -44,7 +44,7 @@ std::shared_ptr<const std::vector<uint8_t>> DenoisedPreview::png(const JobSnapsh
     } done{*this, gate, latest.frame, nullptr};
     ThreadPool pool(0);  // the request's own threads: the render's pool belongs to the render
     done.png = std::make_shared<const std::vector<uint8_t>>(
-        encode_png(denoise(*latest.halves, DenoiserConfig{}, pool), encoding));
+        encode_png(denoise(*latest.halves, pool), encoding));
     return done.png;
 }
 

@@ -97,7 +97,7 @@ TEST_F(Server, ServesTheDenoisedPreviewBesideTheUnbiasedImage) {
     EXPECT_EQ(res->get_header_value("Content-Type"), "image/png");
     ThreadPool pool(1);
     const auto job = testing::render(small_cornell());
-    const std::vector<uint8_t> expected = encode_png(denoise(job->film(), DenoiserConfig{}, pool), Encoding::gamma22);
+    const std::vector<uint8_t> expected = encode_png(denoise(job->film(), pool), Encoding::gamma22);
     EXPECT_EQ(res->body, std::string(expected.begin(), expected.end()));
     EXPECT_NE(res->body, client_->Get(("/jobs/" + id + "/image.png").c_str())->body);  // the PNG stays unbiased
     EXPECT_EQ(client_->Get("/jobs/nope/image.denoised.png")->status, 404);
