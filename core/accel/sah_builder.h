@@ -42,7 +42,8 @@ struct SahBuildConfig {
     unsigned threads = 0;
 };
 
-// Primitives with empty boxes are left out.
+// Primitives with empty boxes are left out. The renderer's instance of the builder
+// (sah_builder_impl.cpp).
 BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const SahBuildConfig& config = {});
 
 }  // namespace glint

@@ -113,7 +113,10 @@ public:
 
     // Where triangle `prim` is stored (one of its positions in the tree's order, when there is
     // a tree), or kNoPrimitive when prim is not a triangle.
-    uint32_t position(uint32_t prim) const;
+    uint32_t position(uint32_t prim) const {
+        const uint32_t index = triangle_index(prim);
+        return position_of_.empty() || index == kNoPrimitive ? index : position_of_[index];
+    }
     // Triangle `prim`'s index among the triangles, or kNoPrimitive when prim is not a triangle.
     uint32_t triangle_index(uint32_t prim) const {
         if (prim < spheres_.size() || prim - spheres_.size() >= triangle_count_) return kNoPrimitive;

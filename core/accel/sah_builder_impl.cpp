@@ -1,5 +1,4 @@
-#include "accel/sah_builder.h"
-
+// The renderer's SAH builder: the template's instance for splits between centres alone.
 #include "accel/sah_builder_impl.h"
 
 namespace glint {
