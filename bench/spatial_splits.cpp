@@ -98,6 +98,14 @@ Polygon clip(const Polygon& in, int axis, double plane, double side) {
     return out;
 }
 
+// The triangles as Geometry stores them: their vertices rounded to float (PackedTriangle).
+std::vector<Triangle> stored_triangles(const std::vector<Triangle>& triangles) {
+    std::vector<Triangle> stored;
+    stored.reserve(triangles.size());
+    for (const Triangle& t : triangles) stored.push_back(PackedTriangle::pack(t).unpack());
+    return stored;
+}
+
 }  // namespace
 
 float SpatialSplits::overlap_share() const { return kOverlapShare; }
@@ -133,13 +141,6 @@ bool SplitGeometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
 
 bool SplitGeometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
     return geometry_.occluded<LeaveOutByIndex>(ray, self, target);
-}
-
-std::vector<Triangle> stored_triangles(const std::vector<Triangle>& triangles) {
-    std::vector<Triangle> stored;
-    stored.reserve(triangles.size());
-    for (const Triangle& t : triangles) stored.push_back(PackedTriangle::pack(t).unpack());
-    return stored;
 }
 
 Bounds3 clipped_bounds(const Triangle& t, const Bounds3& box) {

@@ -1,7 +1,7 @@
 // Spatial splits (Stich, Friedrich and Dietrich, "Spatial splits in bounding volume hierarchies",
-// HPG 2009), a policy of the SAH builder (core/accel/sah_builder_impl.h): a node may also be split by a plane
-// that cuts its triangles, each cut one becoming a reference on both sides with the box of its
-// part there, where that lowers the SAH cost. Long or oblique triangles then stop filling their
+// HPG 2009), a policy of the SAH builder (core/accel/sah_builder_impl.h): a node may also be
+// split by a plane that cuts its triangles, each cut one becoming a reference on both sides with
+// the box of its part there, where that lowers the SAH cost. Long or oblique triangles then stop filling their
 // boxes' overlapping neighbours. Only the benchmarks build such trees (bvh_vs_embree, ray_loop):
 // the renderer and `glint trace-rays` use the binned tree, which builds faster, until a
 // measurement shows the split tree pays for the renders glint makes.
@@ -23,7 +23,7 @@ public:
     static constexpr float kTraversalCost = 1.0f;
 
     // Primitive i is triangles[i], which must outlive the policy: the triangles as the
-    // Geometry stores them (stored_triangles()), so that the parts bound what it tests.
+    // Geometry stores them (as SplitGeometry gives them), so that the parts bound what it tests.
     explicit SpatialSplits(std::span<const Triangle> triangles, double budget = 0.3)
         : triangles_(triangles), budget_(budget) {}
 
@@ -62,9 +62,6 @@ public:
 private:
     Geometry geometry_;
 };
-
-// The triangles as Geometry stores them: their vertices rounded to float (PackedTriangle).
-std::vector<Triangle> stored_triangles(const std::vector<Triangle>& triangles);
 
 // A box around the part of triangle t inside `box` (empty if none): never smaller than that
 // part, and at most a few float units wider.

@@ -1,5 +1,5 @@
 // The SAH builder of sah_builder.h as a template over a policy, so that a caller can compose a
-// variant without the renderer's build paying for it. The renderer's policy (sah_builder.cpp)
+// variant without the renderer's build paying for it. The renderer's policy (sah_builder_impl.cpp)
 // splits nodes between primitive centres alone; a policy that SplitsByPlanes may also cut a node
 // by an axis plane (the benchmarks' spatial splits, bench/spatial_splits.h). Only such a
 // policy's builder compiles the code for planes and their free slots.
@@ -51,8 +51,8 @@ concept SplitsByPlanes = requires(const P& policy, std::span<const Bounds3> boxe
     { policy.part(prim, box) } -> std::convertible_to<Bounds3>;
 };
 
+// The builder's parts, for SahBuilder alone.
 namespace sah {
-
 
 // Bins: 32 for nodes of kManyPrimitives or more, where the split decides the most rays, so a
 // finer choice of plane pays for the longer sweep; at most 16 below, and one bin per primitive

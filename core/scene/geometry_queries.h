@@ -1,5 +1,5 @@
 // Geometry's ray queries, written once over how a leaf's test leaves out the ray's own triangle
-// (and a shadow ray's target). geometry.cpp instantiates them for the renderer's trees, where
+// (and a shadow ray's target). geometry_queries.cpp instantiates them for the renderer's trees, where
 // each triangle has one position; the benchmarks' trees split by planes (a triangle in several
 // leaves) bring their own way (bench/spatial_splits.h). A way is a type with
 //   static uint32_t key(const Geometry&, uint32_t prim): what to look for (kNoPrimitive's key
@@ -33,7 +33,8 @@ inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const 
     const RayShear shear(ray);
     const RunTest run_test(shear);
     auto test_run = [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
-        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, LeaveOut::lanes(*this, skip, first), r, hit.triangle);
+        const unsigned left_out = LeaveOut::lanes(*this, skip, first);
+        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, left_out, r, hit.triangle);
         if (i < 0) return false;
         const uint32_t pos = first + static_cast<uint32_t>(i);
         hit.t = r.tmax = hit.triangle.t;
@@ -73,7 +74,8 @@ bool Geometry::triangle_blocks_avx512(const Ray& ray, uint32_t self, uint32_t ta
 
 template <typename LeaveOut>
 bool Geometry::closest_triangle_hit(Ray& ray, uint32_t self, Hit& hit) const {
-    return isa_ == Isa::avx512 ? closest_triangle_avx512<LeaveOut>(ray, self, hit) : closest_triangle_avx2<LeaveOut>(ray, self, hit);
+    return isa_ == Isa::avx512 ? closest_triangle_avx512<LeaveOut>(ray, self, hit)
+                               : closest_triangle_avx2<LeaveOut>(ray, self, hit);
 }
 
 // Each hit in a hole moves the ray's start to it, and the search goes on behind.
@@ -110,7 +112,8 @@ bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
     Ray r = ray;
     // A mesh scene pays nothing for spheres, not even the call, and a sphere scene nothing for
     // triangles (not even the ray's shear).
-    const bool triangle_hit = !run_slot_.empty() && (has_cutouts() ? closest_past_cutouts<LeaveOut>(r, self, hit) : closest_triangle_hit<LeaveOut>(r, self, hit));
+    const bool triangle_hit = !run_slot_.empty() && (has_cutouts() ? closest_past_cutouts<LeaveOut>(r, self, hit)
+                                                                   : closest_triangle_hit<LeaveOut>(r, self, hit));
     return (!spheres_.empty() && closest_sphere(r, self, hit)) || triangle_hit;
 }
 
