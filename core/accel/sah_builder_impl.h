@@ -400,7 +400,8 @@ private:
         }
         SplitPlane plane;
         if (!(policy_.best_plane(boxes, planes_.prims, extent.bounds.to_bounds(), plane) < object_cost)) return false;
-        std::vector<BuildPrim>&left = planes_.left, &right = planes_.right;
+        std::vector<BuildPrim>& left = planes_.left;
+        std::vector<BuildPrim>& right = planes_.right;
         left.clear();
         right.clear();
         for (uint32_t i = begin; i < end; ++i) {
@@ -424,7 +425,8 @@ private:
     // false if they do not fit or one is empty.
     bool place_sides(uint32_t node, const Child& child, int depth) {
         const uint32_t begin = child.begin, capacity_end = child.capacity_end;
-        const std::vector<BuildPrim>&left = planes_.left, &right = planes_.right;
+        const std::vector<BuildPrim>& left = planes_.left;
+        const std::vector<BuildPrim>& right = planes_.right;
         const auto n_left = static_cast<uint32_t>(left.size()), n_right = static_cast<uint32_t>(right.size());
         if (n_left == 0 || n_right == 0 || n_left + n_right > capacity_end - begin) return false;
         const auto to_left = static_cast<uint32_t>((capacity_end - begin - n_left - n_right) * uint64_t{n_left} / (n_left + n_right));
