@@ -104,7 +104,9 @@ struct Embree {
 
 Ray to_ray(const RayRecord& r) { return Ray{{r.o[0], r.o[1], r.o[2]}, {r.d[0], r.d[1], r.d[2]}, r.tmin, r.tmax}; }
 
-HitRecord glint_closest(const Geometry& g, const RayRecord& r) {
+// Scene: Geometry or SplitGeometry.
+template <typename Scene>
+HitRecord glint_closest(const Scene& g, const RayRecord& r) {
     Hit hit;
     return g.intersect(to_ray(r), kNoPrimitive, hit) ? HitRecord{float(hit.t), hit.prim} : HitRecord{r.tmax, kNoPrimitive};
 }
@@ -125,21 +127,20 @@ std::string format(const char* f, Args... args) {
     return line;
 }
 
-// glint's tree with spatial splits (spatial_splits.h) over `triangles`.
-Geometry split_geometry(const std::vector<Triangle>& triangles) {
-    const std::vector<Triangle> stored = stored_triangles(triangles);
-    const SpatialSplitter splitter(stored);
-    return Geometry({}, triangles, Accelerator::bvh, &splitter);
-}
+// glint's two trees: the binned one and the one with spatial splits (spatial_splits.h).
+struct GlintTrees {
+    Geometry binned;
+    SplitGeometry split;
+};
 
 // Build times and bytes per triangle of glint's two trees and Embree's two qualities: one row.
 // Every build a fresh one (a single build also paid for set-up that later builds do not);
 // Embree's timed around rtcCommitScene alone.
 void bench_builds(const std::string& name, const ObjMesh& mesh, const std::vector<Triangle>& triangles,
-                  Geometry& glint_bvh, Geometry& split_bvh, const Embree* embree[2]) {
+                  GlintTrees& trees, const Embree* embree[2]) {
     const Times builds = interleaved_times({
-        [&] { return seconds([&] { glint_bvh = Geometry({}, triangles, Accelerator::bvh); }); },
-        [&] { return seconds([&] { split_bvh = split_geometry(triangles); }); },
+        [&] { return seconds([&] { trees.binned = Geometry({}, triangles, Accelerator::bvh); }); },
+        [&] { return seconds([&] { trees.split = SplitGeometry(triangles); }); },
         [&] { double s; const Embree scene(mesh, RTC_BUILD_QUALITY_MEDIUM, s); return s; },
         [&] { double s; const Embree scene(mesh, RTC_BUILD_QUALITY_HIGH, s); return s; },
     });
@@ -147,8 +148,8 @@ void bench_builds(const std::string& name, const ObjMesh& mesh, const std::vecto
     const auto per_triangle = [n_tris](size_t bytes) { return double(bytes) / double(n_tris); };
     const auto ms = [&](int e) { return median(builds[e]) * 1e3; };
     g_build_rows.push_back(format("| %s | %zu | %.1f / %.1f | %.1f / %.1f | %.2f / %.2f | %.1f / %.1f | %.1f / %.1f |", name.c_str(),
-                                  n_tris, ms(0), ms(1), ms(2), ms(3), paired_ratio(builds[0], builds[2]), paired_ratio(builds[1], builds[3]), per_triangle(glint_bvh.memory_bytes()),
-                                  per_triangle(split_bvh.memory_bytes()), per_triangle(embree[0]->bytes), per_triangle(embree[1]->bytes)));
+                                  n_tris, ms(0), ms(1), ms(2), ms(3), paired_ratio(builds[0], builds[2]), paired_ratio(builds[1], builds[3]), per_triangle(trees.binned.memory_bytes()),
+                                  per_triangle(trees.split.memory_bytes()), per_triangle(embree[0]->bytes), per_triangle(embree[1]->bytes)));
 }
 
 // How many closest hits and occlusion answers of each glint tree differ from Embree MEDIUM's.
@@ -156,26 +157,28 @@ struct Disagreements {
     size_t closest[2] = {}, occluded[2] = {};
 };
 
-Disagreements check_answers(const std::vector<RayRecord>& rays, const Geometry* trees[2], const Embree& medium) {
+Disagreements check_answers(const std::vector<RayRecord>& rays, const GlintTrees& trees, const Embree& medium) {
     const size_t n = rays.size();
     std::vector<HitRecord> a(n), b(n);
     std::vector<char> o(n);
     Disagreements d;
     ThreadPool pool(2);
     for_rays(pool, n, [&](size_t i) { b[i] = medium.closest(rays[i]); o[i] = medium.occluded(rays[i]); });
-    for (int e = 0; e < 2; ++e) {
-        for_rays(pool, n, [&](size_t i) { a[i] = glint_closest(*trees[e], rays[i]); });
+    const auto count = [&](const auto& tree, int e) {
+        for_rays(pool, n, [&](size_t i) { a[i] = glint_closest(tree, rays[i]); });
         for (size_t i = 0; i < n; ++i) {
             d.closest[e] += !agree(a[i], b[i]);
-            d.occluded[e] += trees[e]->occluded(to_ray(rays[i]), kNoPrimitive) != bool(o[i]);
+            d.occluded[e] += tree.occluded(to_ray(rays[i]), kNoPrimitive) != bool(o[i]);
         }
-    }
+    };
+    count(trees.binned, 0);
+    count(trees.split, 1);
     return d;
 }
 
 // Each query on each engine (glint, glint split, MEDIUM, HIGH) with 1 and 2 threads, as seconds
 // a pass: t[8q + 4(threads - 1) + engine], q 0 for closest hit and 1 for any hit.
-Times time_queries(const std::vector<RayRecord>& rays, const Geometry* trees[2], const Embree* embree[2]) {
+Times time_queries(const std::vector<RayRecord>& rays, const GlintTrees& trees, const Embree* embree[2]) {
     const size_t n = rays.size();
     std::vector<HitRecord> hits(n);
     std::vector<char> occluded(n);
@@ -184,11 +187,11 @@ Times time_queries(const std::vector<RayRecord>& rays, const Geometry* trees[2],
         return [&pool, &f, n] { return seconds([&] { for_rays(pool, n, f); }); };
     };
     const std::function<void(size_t)> closest[4] = {
-        [&](size_t i) { hits[i] = glint_closest(*trees[0], rays[i]); }, [&](size_t i) { hits[i] = glint_closest(*trees[1], rays[i]); },
+        [&](size_t i) { hits[i] = glint_closest(trees.binned, rays[i]); }, [&](size_t i) { hits[i] = glint_closest(trees.split, rays[i]); },
         [&](size_t i) { hits[i] = embree[0]->closest(rays[i]); }, [&](size_t i) { hits[i] = embree[1]->closest(rays[i]); }};
     const std::function<void(size_t)> any[4] = {
-        [&](size_t i) { occluded[i] = trees[0]->occluded(to_ray(rays[i]), kNoPrimitive); },
-        [&](size_t i) { occluded[i] = trees[1]->occluded(to_ray(rays[i]), kNoPrimitive); },
+        [&](size_t i) { occluded[i] = trees.binned.occluded(to_ray(rays[i]), kNoPrimitive); },
+        [&](size_t i) { occluded[i] = trees.split.occluded(to_ray(rays[i]), kNoPrimitive); },
         [&](size_t i) { occluded[i] = embree[0]->occluded(rays[i]); }, [&](size_t i) { occluded[i] = embree[1]->occluded(rays[i]); }};
     std::vector<std::function<double()>> runs;
     for (const auto* query : {closest, any})
@@ -225,9 +228,8 @@ void bench_mesh(const std::string& shared, const std::string& name) {
     const Embree medium(mesh, RTC_BUILD_QUALITY_MEDIUM, unused);
     const Embree high(mesh, RTC_BUILD_QUALITY_HIGH, unused);
     const Embree* embree[2] = {&medium, &high};
-    Geometry glint_bvh, split_bvh;
-    bench_builds(name, mesh, triangles, glint_bvh, split_bvh, embree);
-    const Geometry* trees[2] = {&glint_bvh, &split_bvh};
+    GlintTrees trees;
+    bench_builds(name, mesh, triangles, trees, embree);
     for (const char* kind : {"primary", "diffuse"}) {
         const std::vector<RayRecord> rays = read_rays(shared + "/rays/" + name + "_" + kind + ".rays");
         const Disagreements d = check_answers(rays, trees, medium);

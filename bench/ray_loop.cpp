@@ -98,14 +98,11 @@ double timed_pass(size_t n, std::vector<Answer>& answers, Trace&& trace) {
     return thread_seconds() - start;
 }
 
+// Scene: Geometry, or SplitGeometry for the tree with spatial splits (spatial_splits.h).
+template <typename Scene>
 class GlintEngine final : public Engine {
 public:
-    // `split`: the tree with spatial splits (spatial_splits.h).
-    GlintEngine(const ObjMesh& mesh, bool split, Isa isa) {
-        const std::vector<Triangle> triangles = to_triangles(mesh);
-        const std::vector<Triangle> stored = split ? stored_triangles(triangles) : std::vector<Triangle>{};
-        const SpatialSplitter splitter(stored);
-        geometry_ = Geometry({}, triangles, Accelerator::bvh, split ? &splitter : nullptr);
+    GlintEngine(Scene geometry, Isa isa) : geometry_(std::move(geometry)) {
         geometry_.set_isa(isa);
         if (std::getenv("RAY_LOOP_STATS")) print_tree_stats(geometry_.triangle_bvh());
     }
@@ -124,7 +121,7 @@ public:
     }
 
 private:
-    Geometry geometry_;
+    Scene geometry_;
 };
 
 class EmbreeEngine final : public Engine {
@@ -172,8 +169,9 @@ std::unique_ptr<Engine> make_engine(std::string name, const ObjMesh& mesh) {
     const std::string avx2 = "-avx2";
     const bool want_avx2 = name.ends_with(avx2);
     if (want_avx2) name.resize(name.size() - avx2.size());
-    if (name == "glint" || name == "glint-split")
-        return std::make_unique<GlintEngine>(mesh, name == "glint-split", want_avx2 ? Isa::avx2 : best_isa());
+    const Isa isa = want_avx2 ? Isa::avx2 : best_isa();
+    if (name == "glint") return std::make_unique<GlintEngine<Geometry>>(Geometry({}, to_triangles(mesh), Accelerator::bvh), isa);
+    if (name == "glint-split") return std::make_unique<GlintEngine<SplitGeometry>>(SplitGeometry(to_triangles(mesh)), isa);
     if (!want_avx2 && (name == "medium" || name == "high"))
         return std::make_unique<EmbreeEngine>(mesh, name == "high" ? RTC_BUILD_QUALITY_HIGH : RTC_BUILD_QUALITY_MEDIUM);
     return nullptr;

@@ -1,17 +1,16 @@
 #include "spatial_splits.h"
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 
+#include "scene/geometry_queries.h"
+
 namespace glint {
 namespace {
 
-// The tree with spatial splits takes a step cost of 1, which splits nearly every node down to
-// one triangle, and lets the collapse choose its leaves (bvh_collapse.h).
-constexpr float kTraversalCost = 1.0f;
-// build() makes a node of no more primitives than the step cost a leaf before any other check.
-static_assert(kTraversalCost < BinaryTree::kMaxLeafSize + 1, "a leaf made for its step cost must fit kMaxLeafSize");
 // The planes tried per axis, evenly spaced over the node's box, and Stich et al.'s alpha: planes
 // are looked for only where the object split's children overlap by more than this share of the
 // root's half area, as below that they gain little for a costly search. More slabs find better
@@ -99,13 +98,19 @@ Polygon clip(const Polygon& in, int axis, double plane, double side) {
     return out;
 }
 
+// The triangles as Geometry stores them: their vertices rounded to float (PackedTriangle).
+std::vector<Triangle> stored_triangles(const std::vector<Triangle>& triangles) {
+    std::vector<Triangle> stored;
+    stored.reserve(triangles.size());
+    for (const Triangle& t : triangles) stored.push_back(PackedTriangle::pack(t).unpack());
+    return stored;
+}
+
 }  // namespace
 
-float SpatialSplitter::traversal_cost() const { return kTraversalCost; }
+float SpatialSplits::overlap_share() const { return kOverlapShare; }
 
-float SpatialSplitter::overlap_share() const { return kOverlapShare; }
-
-float SpatialSplitter::best_plane(std::span<const Bounds3> boxes, std::span<const uint32_t> prims,
+float SpatialSplits::best_plane(std::span<const Bounds3> boxes, std::span<const uint32_t> prims,
                                   const Bounds3& node, SplitPlane& plane) const {
     const SlabBinning binning{triangles_, boxes, prims};
     float cost = std::numeric_limits<float>::infinity();
@@ -113,13 +118,29 @@ float SpatialSplitter::best_plane(std::span<const Bounds3> boxes, std::span<cons
     return cost;
 }
 
-Bounds3 SpatialSplitter::part(uint32_t prim, const Bounds3& box) const { return clipped_bounds(triangles_[prim], box); }
+Bounds3 SpatialSplits::part(uint32_t prim, const Bounds3& box) const { return clipped_bounds(triangles_[prim], box); }
 
-std::vector<Triangle> stored_triangles(const std::vector<Triangle>& triangles) {
-    std::vector<Triangle> stored;
-    stored.reserve(triangles.size());
-    for (const Triangle& t : triangles) stored.push_back(PackedTriangle::pack(t).unpack());
-    return stored;
+unsigned LeaveOutByIndex::lanes(const Geometry& geometry, uint32_t key, uint32_t first) {
+    if (key == kNoPrimitive) return 0;  // a camera ray's, and the shared ray sets': no load
+    const __m128i indices = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&geometry.tree_order()[first]));
+    const __m128i same = _mm_cmpeq_epi32(indices, _mm_set1_epi32(static_cast<int>(key)));
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(same)));
+}
+
+SplitGeometry::SplitGeometry(const std::vector<Triangle>& triangles) {
+    const std::vector<Triangle> stored = stored_triangles(triangles);
+    const SpatialSplits splits(stored);
+    geometry_ = Geometry({}, triangles, Accelerator::bvh, [&](std::span<const Bounds3> boxes) {
+        return Bvh::from_tree(build_sah_tree(boxes, splits), boxes);
+    });
+}
+
+bool SplitGeometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
+    return geometry_.intersect<LeaveOutByIndex>(ray, self, hit);
+}
+
+bool SplitGeometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
+    return geometry_.occluded<LeaveOutByIndex>(ray, self, target);
 }
 
 Bounds3 clipped_bounds(const Triangle& t, const Bounds3& box) {

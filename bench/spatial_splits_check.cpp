@@ -87,8 +87,7 @@ TEST(SpatialSplits, CollapseFindsTheLeastCost) {
     const RandomScene s = random_scene(19, 0, 4000);
     std::vector<Bounds3> bounds;
     for (const Triangle& t : s.triangles) bounds.push_back(t.bounds());
-    const SpatialSplitter splitter(s.triangles);
-    const BinaryTree tree = build_sah_tree(bounds, &splitter);
+    const BinaryTree tree = build_sah_tree(bounds, SpatialSplits(s.triangles));
     EXPECT_NEAR(wide_cost(tree), least_wide_cost(tree.nodes), 1e-5 * wide_cost(tree));
 }
 
@@ -100,9 +99,8 @@ TEST(SpatialSplits, TreeAnswersAsBruteForce) {
     Rng rng(18, 0, 0);
     auto point = [&] { return Vec3{rng.uniform(), rng.uniform(), rng.uniform()} * 20 - Vec3{10}; };
     for (int i = 0; i < 300; ++i) s.triangles.push_back({point(), point(), point()});
-    const std::vector<Triangle> stored = stored_triangles(s.triangles);
-    const SpatialSplitter splitter(stored);
-    const Geometry split({}, s.triangles, Accelerator::bvh, &splitter), list({}, s.triangles, Accelerator::list);
+    const SplitGeometry split(s.triangles);
+    const Geometry list({}, s.triangles, Accelerator::list);
     const Bvh& bvh = split.triangle_bvh();
     ASSERT_GT(bvh.tree_size(), s.triangles.size() + 300) << "the long triangles should be split";
     // Every position lies in one leaf, and every triangle is in the tree.
@@ -138,9 +136,8 @@ TEST(SpatialSplits, TreeAnswersAsBruteForce) {
 TEST(SpatialSplits, TreeKeepsAxisParallelRaysOnSharedEdges) {
     std::vector<Triangle> triangles = grid(32);
     triangles.push_back({{0, 0, 0.5}, {32, 32, 0.5}, {0, 32.5, 0.25}});  // a long one above, to split
-    const std::vector<Triangle> stored = stored_triangles(triangles);
-    const SpatialSplitter splitter(stored);
-    const Geometry bvh({}, triangles, Accelerator::bvh, &splitter), list({}, triangles, Accelerator::list);
+    const SplitGeometry bvh(triangles);
+    const Geometry list({}, triangles, Accelerator::list);
     Rng rng(19, 0, 0);
     for (int i = 0; i < 3000; ++i) {
         const Vec3 o{std::floor(rng.uniform() * 33), std::floor(rng.uniform() * 33), rng.uniform() < 0.5 ? 1.0 : -1.0};

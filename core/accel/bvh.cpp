@@ -5,11 +5,22 @@
 #include "accel/bvh_collapse.h"
 
 namespace glint {
+namespace {
 
-Bvh Bvh::build(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter) {
-    const double references = double(prim_bounds.size()) * (1 + (splitter ? splitter->budget() : 0));
+// Checked before a build, so that an input too large fails before the work.
+void check_references(double references) {
     if (references > ChildRef::kMaxPrimitives) throw std::length_error("too many primitives for one BVH");
-    BinaryTree tree = build_sah_tree(prim_bounds, splitter);
+}
+
+}  // namespace
+
+Bvh Bvh::build(std::span<const Bounds3> prim_bounds) {
+    check_references(double(prim_bounds.size()));
+    return from_tree(build_sah_tree(prim_bounds), prim_bounds);
+}
+
+Bvh Bvh::from_tree(BinaryTree tree, std::span<const Bounds3> prim_bounds) {
+    check_references(double(tree.order.size()));
     Bvh bvh;
     if (!tree.nodes.empty()) bvh.nodes_ = collapse_to_wide(tree.nodes);
     bvh.tree_size_ = static_cast<uint32_t>(tree.order.size());

@@ -24,13 +24,17 @@ public:
 
     Bvh() = default;
     // Builds over primitives 0..n-1; primitives with empty boxes are left out of the tree.
-    // With a `splitter` (sah_builder.h), the tree may hold a primitive in several leaves.
-    // Throws std::length_error beyond ChildRef::kMaxPrimitives references.
-    static Bvh build(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter = nullptr);
+    // Throws std::length_error beyond ChildRef::kMaxPrimitives primitives.
+    static Bvh build(std::span<const Bounds3> prim_bounds);
+    // The tree `tree`, built over `prim_bounds` by another policy of the SAH builder
+    // (sah_builder_impl.h), such as the benchmarks' spatial splits, whose leaves may hold a
+    // primitive in several places. Throws std::length_error beyond ChildRef::kMaxPrimitives
+    // references.
+    static Bvh from_tree(BinaryTree tree, std::span<const Bounds3> prim_bounds);
 
     // Build order: position -> primitive. The tree's references come first (the leaves cover
-    // positions 0..tree_size()-1; with a splitter a primitive may appear more than once),
-    // the primitives left out follow.
+    // positions 0..tree_size()-1; in a tree split by planes a primitive may appear more than
+    // once), the primitives left out follow.
     const std::vector<uint32_t>& order() const { return order_; }
     uint32_t tree_size() const { return tree_size_; }
     const std::vector<BvhNode>& nodes() const { return nodes_; }

@@ -20,7 +20,7 @@ void Geometry::set_isa(Isa isa) {
 }
 
 Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles, Accelerator accelerator,
-                   const ReferenceSplitter* splitter)
+                   const TriangleTreeBuild& build_triangle_tree)
     : spheres_(std::move(spheres)), accelerator_(accelerator) {
     std::vector<PackedTriangle> packed;
     std::vector<Bounds3> triangle_bounds;
@@ -47,12 +47,11 @@ Geometry::Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& tri
     sphere_bounds.reserve(spheres_.size());
     for (const Sphere& s : spheres_) sphere_bounds.push_back(s.bounds());
     sphere_bvh_ = Bvh::build(sphere_bounds);
-    triangle_bvh_ = Bvh::build(triangle_bounds, splitter);
+    triangle_bvh_ = build_triangle_tree(triangle_bounds);
     triangle_at_ = triangle_bvh_.order();
     position_of_.resize(packed.size());
     for (uint32_t pos = 0; pos < triangle_at_.size(); ++pos) position_of_[triangle_at_[pos]] = pos;
     store_runs(packed, triangle_at_);
-    split_triangles_ = triangle_at_.size() > packed.size();
     triangle_at_.insert(triangle_at_.end(), triangle_run::kPadding, kNoPrimitive);
 }
 
@@ -81,166 +80,7 @@ size_t Geometry::memory_bytes() const {
            attributes_.uvs.size() * sizeof(TriangleUvs) + attributes_.normals.size() * sizeof(TriangleNormals);
 }
 
-uint32_t Geometry::position(uint32_t prim) const {
-    const uint32_t index = triangle_index(prim);
-    return position_of_.empty() || index == kNoPrimitive ? index : position_of_[index];
-}
-
 static_assert(BinaryTree::kMaxLeafSize <= triangle_run::kMaxSize, "a leaf must fit one run test");
-
-uint32_t Geometry::leave_out_key(uint32_t prim) const { return split_triangles_ ? triangle_index(prim) : position(prim); }
-
-// Where each triangle has one position, by table on the position: 0 from four lanes on
-// (kNoPrimitive and positions before `first` included). With split triangles, by comparing the
-// run's four triangle indices, a load and a compare more per leaf than the table, so only
-// there. A lane past the end of a shorter run names no triangle of it, and the
-// run test looks only at the run's own lanes.
-inline unsigned Geometry::lanes_of(uint32_t key, uint32_t first) const {
-    if (!split_triangles_) {
-        static constexpr unsigned kLane[triangle_run::kMaxSize + 1] = {0b1, 0b10, 0b100, 0b1000, 0};
-        return kLane[std::min(key - first, triangle_run::kMaxSize)];
-    }
-    if (key == kNoPrimitive) return 0;  // a camera ray's, and the shared ray sets': no load
-    const __m128i indices = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&triangle_at_[first]));
-    const __m128i same = _mm_cmpeq_epi32(indices, _mm_set1_epi32(static_cast<int>(key)));
-    return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(same)));
-}
-
-// A triangle is flat, so a ray leaving it cannot meet it again; a sphere is told, so that it
-// keeps only the far root (see Sphere::intersect).
-template <bool kAvx512>
-inline bool Geometry::closest_triangle(Ray& ray, uint32_t self, Hit& hit) const {
-    const uint32_t skip = leave_out_key(self);
-    const RayShear shear(ray);
-    const RunTest run_test(shear);
-    auto test_run = [&](uint32_t first, uint32_t count, Ray& r) __attribute__((always_inline)) {
-        const int i = run_test.closest(&triangle_runs_[9 * size_t(first)], count, lanes_of(skip, first), r, hit.triangle);
-        if (i < 0) return false;
-        const uint32_t pos = first + static_cast<uint32_t>(i);
-        hit.t = r.tmax = hit.triangle.t;
-        hit.prim = triangle_id(triangle_at_.empty() ? pos : triangle_at_[pos]);
-        return true;
-    };
-    if (accelerator_ == Accelerator::bvh) return triangle_bvh_.closest<kAvx512>(ray, test_run);
-    bool found = false;
-    for (uint32_t pos = 0; pos < triangle_count_; ++pos) found |= test_run(pos, 1, ray);
-    return found;
-}
-
-// The two instantiations of each triangle query. The target attribute lets GCC inline the
-// AVX2 code (the traversal, the box and run tests) into the AVX-512 function and allocate it
-// there with 32 registers; nothing compiled for AVX-512 is emitted out of line where AVX2 code
-// could link to it. Rounding is the same: the same IEEE operations, and -ffp-contract=off keeps
-// AVX-512F's fused multiply-adds out; the one AVX-512 instruction of the closest-hit copy's own,
-// the limit's rounding after a hit, rounds as the AVX code does (to_float_up_avx512). The leaf
-// lambdas are always inlined: used by both copies, GCC would otherwise call them out of line,
-// leaf test and all, from both.
-bool Geometry::closest_triangle_avx2(Ray& ray, uint32_t self, Hit& hit) const { return closest_triangle<false>(ray, self, hit); }
-bool Geometry::closest_triangle_avx512(Ray& ray, uint32_t self, Hit& hit) const {
-    return closest_triangle<true>(ray, self, hit);
-}
-bool Geometry::triangle_blocks_avx2(const Ray& ray, uint32_t self, uint32_t target) const {
-    return triangle_blocks(ray, self, target);
-}
-bool Geometry::triangle_blocks_avx512(const Ray& ray, uint32_t self, uint32_t target) const {
-    return triangle_blocks(ray, self, target);
-}
-
-bool Geometry::closest_triangle_hit(Ray& ray, uint32_t self, Hit& hit) const {
-    return isa_ == Isa::avx512 ? closest_triangle_avx512(ray, self, hit) : closest_triangle_avx2(ray, self, hit);
-}
-
-// Each hit in a hole moves the ray's start to it, and the search goes on behind.
-// The ray's own tmin is kept: the spheres are tested on it next.
-bool Geometry::closest_past_cutouts(Ray& ray, uint32_t self, Hit& hit) const {
-    Ray r = ray;
-    while (closest_triangle_hit(r, self, hit)) {
-        if (!cut_away(hit)) {
-            ray.tmax = r.tmax;
-            return true;
-        }
-        r.tmin = hit.t;
-        r.tmax = ray.tmax;
-    }
-    return false;
-}
-
-bool Geometry::blocked_past_cutouts(const Ray& ray, uint32_t self, uint32_t target) const {
-    Ray r = ray;
-    Hit hit;
-    while (closest_triangle_hit(r, self, hit)) {
-        if (hit.prim != target && !cut_away(hit)) return true;
-        r.tmin = hit.t;
-        r.tmax = ray.tmax;
-    }
-    return false;
-}
-
-bool Geometry::closest_sphere(Ray& ray, uint32_t self, Hit& hit) const {
-    if (accelerator_ != Accelerator::bvh) {
-        double t;
-        const int prim = sphere_list_.closest(ray, self, t);
-        if (prim < 0) return false;
-        hit = {t, static_cast<uint32_t>(prim), {}};
-        ray.tmax = t;
-        return true;
-    }
-    auto test = [&](uint32_t prim, Ray& r) {
-        double t;
-        if (!spheres_[prim].intersect(r, prim == self, t)) return false;
-        hit = {t, prim, {}};
-        r.tmax = t;
-        return true;
-    };
-    return sphere_bvh_.closest(ray, [&](uint32_t first, uint32_t count, Ray& r) {
-        bool found = false;
-        for (uint32_t pos = first; pos < first + count; ++pos) found |= test(sphere_bvh_.order()[pos], r);
-        return found;
-    });
-}
-
-bool Geometry::intersect(const Ray& ray, uint32_t self, Hit& hit) const {
-    if (!has_finite_origin_and_direction(ray)) return false;  // would visit every node for nothing
-    Ray r = ray;
-    // A mesh scene pays nothing for spheres, not even the call, and a sphere scene nothing for
-    // triangles (not even the ray's shear).
-    const bool triangle_hit = !run_slot_.empty() && (has_cutouts() ? closest_past_cutouts(r, self, hit) : closest_triangle_hit(r, self, hit));
-    return (!spheres_.empty() && closest_sphere(r, self, hit)) || triangle_hit;
-}
-
-inline bool Geometry::triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
-    const uint32_t skip = leave_out_key(self), wanted = leave_out_key(target);
-    const RayShear shear(ray);
-    const RunTest run_test(shear);
-    auto blocks = [&](uint32_t first, uint32_t count, const Ray& r) __attribute__((always_inline)) {
-        const unsigned left_out = lanes_of(skip, first) | lanes_of(wanted, first);
-        return run_test.any(&triangle_runs_[9 * size_t(first)], count, left_out, r);
-    };
-    if (accelerator_ == Accelerator::bvh) return triangle_bvh_.any(ray, blocks);
-    for (uint32_t pos = 0; pos < triangle_count_; ++pos)
-        if (blocks(pos, 1, ray)) return true;
-    return false;
-}
-
-bool Geometry::sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) const {
-    if (accelerator_ != Accelerator::bvh) return sphere_list_.any(ray, self, target);
-    return sphere_bvh_.any(ray, [&](uint32_t first, uint32_t count, const Ray& r) {
-        for (uint32_t pos = first; pos < first + count; ++pos) {
-            const uint32_t prim = sphere_bvh_.order()[pos];
-            double t;
-            if (prim != target && spheres_[prim].intersect(r, prim == self, t)) return true;
-        }
-        return false;
-    });
-}
-
-bool Geometry::occluded(const Ray& ray, uint32_t self, uint32_t target) const {
-    if (!has_finite_origin_and_direction(ray)) return false;
-    return (!spheres_.empty() && sphere_blocks(ray, self, target)) ||
-           (!run_slot_.empty() && (has_cutouts() ? blocked_past_cutouts(ray, self, target)
-                                   : isa_ == Isa::avx512 ? triangle_blocks_avx512(ray, self, target)
-                                                         : triangle_blocks_avx2(ray, self, target)));
-}
 
 SurfaceInteraction Geometry::interaction(const Ray& ray, const Hit& hit) const {
     // One named result, built in place: a second return would copy the whole record.
@@ -267,14 +107,6 @@ void Geometry::attach(TriangleAttributes attributes, CutOuts cutouts) {
     attributes_ = std::move(attributes);
     cutouts_ = std::move(cutouts);
     if (cutouts_.mask_of_triangle.empty()) cutouts_.masks.clear();
-}
-
-bool Geometry::cut_away(const Hit& hit) const {
-    const uint32_t index = triangle_index(hit.prim);
-    const uint32_t mask = cutouts_.mask_of_triangle[index];
-    if (mask == CutOuts::kNoMask) return false;
-    const Uv uv = attributes_.uvs.empty() ? Uv{} : attributes_.uvs[index].at(hit.triangle.b1, hit.triangle.b2);
-    return !cutouts_.masks[mask].keeps(uv);
 }
 
 bool Geometry::tangent(const SurfaceInteraction& si, Vec3& t, double& sign) const {

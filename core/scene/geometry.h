@@ -2,6 +2,8 @@
 // queries the integrator asks of them.
 #pragma once
 
+#include <functional>
+#include <span>
 #include <vector>
 
 #include "accel/bvh.h"
@@ -47,13 +49,18 @@ struct Hit {
 // Spheres and triangles get a tree each: the triangles' tree stores them in its leaves' order,
 // so a leaf reads one contiguous run with no index in between, and a scene of one kind pays
 // nothing for the other.
+// How the renderer's queries leave a ray's own triangle out of a leaf (geometry_queries.h).
+struct LeaveOutByPosition;
+
 class Geometry {
 public:
+    // Builds the triangles' tree over their boxes (triangle i's box is box i, empty for a
+    // degenerate one): Bvh::build, or a benchmark's own build (bench/spatial_splits.h).
+    using TriangleTreeBuild = std::function<Bvh(std::span<const Bounds3>)>;
+
     Geometry() = default;
-    // `splitter`, if given, may also split the triangles' tree by planes that cut triangles
-    // (sah_builder.h); its primitive i is triangle i as stored (float vertices).
     Geometry(std::vector<Sphere> spheres, const std::vector<Triangle>& triangles,
-             Accelerator accelerator = Accelerator::automatic, const ReferenceSplitter* splitter = nullptr);
+             Accelerator accelerator = Accelerator::automatic, const TriangleTreeBuild& build_triangle_tree = Bvh::build);
 
     size_t sphere_count() const { return spheres_.size(); }
     size_t triangle_count() const { return triangle_count_; }
@@ -96,25 +103,30 @@ public:
     bool tangent(const SurfaceInteraction& si, Vec3& t, double& sign) const;
 
     // Closest hit in (ray.tmin, ray.tmax]; `self` is the primitive the ray leaves from.
+    // `LeaveOut`: how a leaf's test leaves `self` (and `target`) out (geometry_queries.h).
+    template <typename LeaveOut = LeaveOutByPosition>
     bool intersect(const Ray& ray, uint32_t self, Hit& hit) const;
     // Whether anything other than `target` blocks the ray in (ray.tmin, ray.tmax].
+    template <typename LeaveOut = LeaveOutByPosition>
     bool occluded(const Ray& ray, uint32_t self, uint32_t target = kNoPrimitive) const;
     SurfaceInteraction interaction(const Ray& ray, const Hit& hit) const;
 
-private:
     // Where triangle `prim` is stored (one of its positions in the tree's order, when there is
     // a tree), or kNoPrimitive when prim is not a triangle.
-    uint32_t position(uint32_t prim) const;
+    uint32_t position(uint32_t prim) const {
+        const uint32_t index = triangle_index(prim);
+        return position_of_.empty() || index == kNoPrimitive ? index : position_of_[index];
+    }
     // Triangle `prim`'s index among the triangles, or kNoPrimitive when prim is not a triangle.
     uint32_t triangle_index(uint32_t prim) const {
         if (prim < spheres_.size() || prim - spheres_.size() >= triangle_count_) return kNoPrimitive;
         return static_cast<uint32_t>(prim - spheres_.size());
     }
-    // What lanes_of() looks for to leave triangle `prim` out: its position, or with split
-    // triangles its index (kNoPrimitive when prim is not a triangle).
-    uint32_t leave_out_key(uint32_t prim) const;
-    // The lanes of the run at position `first` that hold the triangle of leave_out_key() `key`.
-    unsigned lanes_of(uint32_t key, uint32_t first) const;
+    // Tree position -> triangle index, with triangle_run::kPadding entries of kNoPrimitive
+    // after the last (empty without a tree).
+    std::span<const uint32_t> tree_order() const { return triangle_at_; }
+
+private:
     // The triangle at `pos`: its run's size, its index in the run and where the run starts.
     uint32_t run_size(uint32_t pos) const { return run_slot_[pos] >> 4; }
     uint32_t run_index(uint32_t pos) const { return run_slot_[pos] & 15; }
@@ -124,13 +136,18 @@ private:
     }
     void store_runs(const std::vector<PackedTriangle>& packed, const std::vector<uint32_t>& triangle_at);
     // The triangle queries, written once and instantiated for each Isa below.
-    template <bool kAvx512>
+    template <typename LeaveOut, bool kAvx512>
     [[gnu::always_inline]] bool closest_triangle(Ray& ray, uint32_t self, Hit& hit) const;
+    template <typename LeaveOut>
     bool closest_triangle_avx2(Ray& ray, uint32_t self, Hit& hit) const;
+    template <typename LeaveOut>
     [[gnu::target("avx512f,avx512vl")]] bool closest_triangle_avx512(Ray& ray, uint32_t self, Hit& hit) const;
     bool closest_sphere(Ray& ray, uint32_t self, Hit& hit) const;
+    template <typename LeaveOut>
     [[gnu::always_inline]] bool triangle_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
+    template <typename LeaveOut>
     bool triangle_blocks_avx2(const Ray& ray, uint32_t self, uint32_t target) const;
+    template <typename LeaveOut>
     [[gnu::target("avx512f,avx512vl")]] bool triangle_blocks_avx512(const Ray& ray, uint32_t self, uint32_t target) const;
     bool sphere_blocks(const Ray& ray, uint32_t self, uint32_t target) const;
 
@@ -148,18 +165,20 @@ private:
     Isa isa_ = best_isa();
     Bvh sphere_bvh_, triangle_bvh_;
     size_t triangle_count_ = 0;
-    bool split_triangles_ = false;  // some triangle lies in several leaves (built with a splitter)
     size_t degenerate_ = 0;
     TriangleAttributes attributes_;
     CutOuts cutouts_;
     // Whether a triangle hit falls in a hole of its cut-out.
     bool cut_away(const Hit& hit) const;
     // The closest triangle hit in the tree's instruction set.
+    template <typename LeaveOut>
     bool closest_triangle_hit(Ray& ray, uint32_t self, Hit& hit) const;
     // The closest hit and the occlusion test where there are cut-outs: the tree's queries again
     // from each hit in a hole. Apart from the traversal, so that a scene without cut-outs runs
     // the code it ran before them.
+    template <typename LeaveOut>
     bool closest_past_cutouts(Ray& ray, uint32_t self, Hit& hit) const;
+    template <typename LeaveOut>
     bool blocked_past_cutouts(const Ray& ray, uint32_t self, uint32_t target) const;
 };
 

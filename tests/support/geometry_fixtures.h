@@ -44,7 +44,9 @@ inline std::vector<Triangle> grid(int n) {
     return out;
 }
 
-inline void expect_same_answers(const Geometry& bvh, const Geometry& list, const Ray& ray) {
+// Scene: Geometry, or another type with its queries (the benchmarks' SplitGeometry).
+template <typename Scene>
+void expect_same_answers(const Scene& bvh, const Geometry& list, const Ray& ray) {
     Hit a, b;
     const bool hit_a = bvh.intersect(ray, kNoPrimitive, a), hit_b = list.intersect(ray, kNoPrimitive, b);
     ASSERT_EQ(hit_a, hit_b);
@@ -57,8 +59,8 @@ inline void expect_same_answers(const Geometry& bvh, const Geometry& list, const
     Hit tie;
     Ray only_b = ray;
     only_b.tmax = b.t;
-    ASSERT_FALSE(bvh.is_sphere(a.prim));
-    ASSERT_TRUE(bvh.triangle(a.prim).intersect(only_b, tie.triangle));
+    ASSERT_FALSE(list.is_sphere(a.prim));
+    ASSERT_TRUE(list.triangle(a.prim).intersect(only_b, tie.triangle));
     EXPECT_EQ(tie.triangle.t, b.t);
 }
 

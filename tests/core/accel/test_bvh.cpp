@@ -412,10 +412,10 @@ TEST(Bvh, ParallelBuildMakesTheSingleThreadedTree) {
         const Vec3 p{rng.uniform() * 100, rng.uniform() * 10, rng.uniform()}, size{rng.uniform(), rng.uniform(), rng.uniform()};
         boxes.push_back({p, p + size});
     }
-    const BinaryTree single = build_sah_tree(boxes, nullptr, {.parallel_from = UINT32_MAX});
+    const BinaryTree single = build_sah_tree(boxes, {.parallel_from = UINT32_MAX});
     const std::vector<BvhNode> wide = collapse_to_wide(single.nodes);
     for (unsigned threads : {1u, 2u, 7u}) {
-        const BinaryTree parallel = build_sah_tree(boxes, nullptr, {.parallel_from = 1000, .threads = threads});
+        const BinaryTree parallel = build_sah_tree(boxes, {.parallel_from = 1000, .threads = threads});
         EXPECT_NE(parallel.nodes.size(), 0u);
         EXPECT_EQ(parallel.order, single.order) << threads << " threads";
         const std::vector<BvhNode> parallel_wide = collapse_to_wide(parallel.nodes);

@@ -1,4 +1,9 @@
-#include "accel/sah_builder.h"
+// The SAH builder of sah_builder.h as a template over a policy, so that a caller can compose a
+// variant without the renderer's build paying for it. The renderer's policy (sah_builder_impl.cpp)
+// splits nodes between primitive centres alone; a policy that SplitsByPlanes may also cut a node
+// by an axis plane (the benchmarks' spatial splits, bench/spatial_splits.h). Only such a
+// policy's builder compiles the code for planes and their free slots.
+#pragma once
 
 #include <immintrin.h>
 
@@ -6,13 +11,48 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <concepts>
 #include <cstring>
+#include <limits>
 #include <numeric>
+#include <span>
 #include <thread>
+#include <type_traits>
 #include <utility>
+#include <vector>
+
+#include "accel/sah_builder.h"
 
 namespace glint {
-namespace {
+
+// An axis plane: the axis and the coordinate there.
+struct SplitPlane {
+    int axis = -1;
+    double position = 0;
+};
+
+// Every policy gives kTraversalCost: one step down, relative to one primitive test, in the trees
+// it builds. A policy that splits by planes also cuts a node by an axis plane through the
+// references it crosses, each cut one becoming a reference on both sides with the box of its
+// part there; the tree's order may then name a primitive several times. The builder leaves
+// free slots for the references this adds (at most budget() more per primitive), asks for a
+// plane only where the children of the best split by centres overlap by more than
+// overlap_share() of the root's half area, and takes the plane where it costs less.
+// best_plane(boxes, prims, node, plane): the cheapest plane through a node of box `node`
+// holding the references `boxes` (of the primitives `prims`), and its unnormalised SAH cost
+// (infinite if there is none). part(prim, box): a box around the part of primitive `prim`
+// inside `box` (empty if none).
+template <typename P>
+concept SplitsByPlanes = requires(const P& policy, std::span<const Bounds3> boxes, std::span<const uint32_t> prims,
+                                  const Bounds3& box, SplitPlane& plane, uint32_t prim) {
+    { policy.budget() } -> std::convertible_to<double>;
+    { policy.overlap_share() } -> std::convertible_to<float>;
+    { policy.best_plane(boxes, prims, box, plane) } -> std::convertible_to<float>;
+    { policy.part(prim, box) } -> std::convertible_to<Bounds3>;
+};
+
+// The builder's parts, for SahBuilder alone.
+namespace sah {
 
 // Bins: 32 for nodes of kManyPrimitives or more, where the split decides the most rays, so a
 // finer choice of plane pays for the longer sweep; at most 16 below, and one bin per primitive
@@ -23,13 +63,6 @@ constexpr int kFewBins = 16;
 constexpr uint32_t kManyPrimitives = 1024;
 // Primitives binned per block (see best_sah_split).
 constexpr uint32_t kBinningBlock = 32;
-// Relative to one primitive test. Lower splits more: fewer primitive tests a ray, but more,
-// emptier nodes (more memory) and a longer build; higher makes larger leaves and more tests a
-// ray. 2 trades a few more instructions a ray for much less memory than 1 (`glint trace-rays`
-// reports the tree's bytes per triangle). A ReferenceSplitter brings its own.
-constexpr float kTraversalCost = 2.0f;
-// build() makes a node of no more primitives than the step cost a leaf before any other check.
-static_assert(kTraversalCost < BinaryTree::kMaxLeafSize + 1, "a leaf made for its step cost must fit kMaxLeafSize");
 // Below this depth SAH decides; deeper, splits fall back to the median so the tree's depth
 // (and so the traversal stack) stays bounded whatever the input.
 constexpr int kSahDepth = 64;
@@ -133,31 +166,47 @@ struct Split {
     float cost = std::numeric_limits<float>::infinity();
 };
 
+}  // namespace sah
+
 // Builds over prims_[0, n). A node owns a range of prims_ and the free slots after it up to its
 // capacity's end, which splits by a plane fill with the references they add; each split shares
-// the free slots out between the children in proportion to their sizes (without a
-// ReferenceSplitter there are none).
+// the free slots out between the children in proportion to their sizes (a policy that does not
+// split by planes leaves none, and its builder has no code for them).
 //
 // A parallel build leaves the subtrees of at most a kSubtreeShare-th of the primitives as tasks;
 // threads then build each into a node array of its own, over its own range of prims_, and the
 // arrays are appended in the order of the tasks. The tree is the one a single thread builds (each
 // node's split depends on its primitives alone), only numbered otherwise, and collapse_to_wide()
 // numbers the wide tree from the structure alone.
-class Builder {
-public:
-    Builder(std::vector<BuildPrim>& prims, const ReferenceSplitter* splitter, std::vector<BinaryNode>& nodes)
-        : prims_(prims), splitter_(splitter), traversal_cost_(splitter ? splitter->traversal_cost() : kTraversalCost),
-          nodes_(&nodes) {}
+template <typename Policy>
+class SahBuilder {
+    static constexpr bool kPlanes = SplitsByPlanes<Policy>;
+    static constexpr float kTraversalCost = Policy::kTraversalCost;
+    // build() makes a node of no more primitives than the step cost a leaf before any other check.
+    static_assert(kTraversalCost < BinaryTree::kMaxLeafSize + 1, "a leaf made for its step cost must fit kMaxLeafSize");
+    using SseBox = sah::SseBox;
+    using BuildPrim = sah::BuildPrim;
+    using Binning = sah::Binning;
+    using Split = sah::Split;
+    using LazyBox = sah::LazyBox;
 
+public:
+    SahBuilder(std::vector<BuildPrim>& prims, const Policy& policy, std::vector<BinaryNode>& nodes)
+        : prims_(prims), policy_(policy), nodes_(&nodes) {}
+
+    // Splits by planes are built on one thread: their free slots are shared out as they go.
     BinaryTree run(const SahBuildConfig& config) {
         const auto n = static_cast<uint32_t>(prims_.size());
-        const auto capacity = splitter_ ? n + static_cast<uint32_t>(splitter_->budget() * n) : n;
+        uint32_t capacity = n;
+        if constexpr (kPlanes)
+            capacity += static_cast<uint32_t>(policy_.budget() * n);
+        else if (n >= config.parallel_from)
+            largest_task_ = n / sah::kSubtreeShare;
         nodes_->reserve(2 * capacity);
         nodes_->push_back({});
         prims_.resize(capacity);
         const Extent root = extent_of(0, n);
-        root_area_ = root.bounds.half_area();
-        if (!splitter_ && n >= config.parallel_from) largest_task_ = n / kSubtreeShare;
+        if constexpr (kPlanes) planes_.root_area = root.bounds.half_area();
         build(0, {0, n, capacity, root}, 0);
         build_tasks(config.threads ? config.threads : std::max(1u, std::thread::hardware_concurrency()));
         BinaryTree tree;
@@ -237,7 +286,7 @@ private:
                 std::vector<BinaryNode>& nodes = subtrees[by_size[i]];
                 nodes.reserve(2 * size_t{task.child.end - task.child.begin});
                 nodes.push_back({});
-                Builder(prims_, splitter_, nodes).build(0, task.child, task.depth);
+                SahBuilder(prims_, policy_, nodes).build(0, task.child, task.depth);
             }
         };
         {
@@ -271,10 +320,10 @@ private:
         const float leaf_cost = float(count);
         // A split costs at least the traversal step: a node of no more primitives than that is a
         // leaf without a look at its bins.
-        if (leaf_cost <= traversal_cost_) return make_leaf(node, begin, count);
+        if (leaf_cost <= kTraversalCost) return make_leaf(node, begin, count);
         const Binning binning(extent.centres, count);
-        const Split split = depth < kSahDepth ? best_sah_split(begin, end, binning) : Split{};
-        const float split_cost = traversal_cost_ + split.cost / extent.bounds.half_area();
+        const Split split = depth < sah::kSahDepth ? best_sah_split(begin, end, binning) : Split{};
+        const float split_cost = kTraversalCost + split.cost / extent.bounds.half_area();
         if (count <= BinaryTree::kMaxLeafSize && leaf_cost <= split_cost) return make_leaf(node, begin, count);
         Extent left, right;
         uint32_t mid = split.axis >= 0 ? partition(begin, end, split, left, right) : begin;
@@ -283,14 +332,25 @@ private:
             left = extent_of(begin, mid);
             right = extent_of(mid, end);
         }
-        if (capacity_end > end && depth < kSahDepth && overlap_enough(left.bounds, right.bounds) &&
-            split_by_plane(node, child, depth, split.cost))
-            return;
-
-        // The right-hand references move up by the left child's share of the free slots.
-        const auto to_left = static_cast<uint32_t>((capacity_end - end) * uint64_t{mid - begin} / count);
-        if (to_left > 0) std::move_backward(prims_.begin() + mid, prims_.begin() + end, prims_.begin() + end + to_left);
+        if constexpr (kPlanes) {
+            if (capacity_end > end && depth < sah::kSahDepth && overlap_enough(left.bounds, right.bounds) &&
+                split_by_plane(node, child, depth, split.cost))
+                return;
+        }
+        const uint32_t to_left = share_free_slots(child, mid);
         split_node(node, {begin, mid, mid + to_left, left}, {mid + to_left, end + to_left, capacity_end, right}, depth);
+    }
+
+    // The left child's share of the node's free slots, which the right-hand references move up by.
+    uint32_t share_free_slots(const Child& child, uint32_t mid) {
+        if constexpr (!kPlanes) {
+            return 0;
+        } else {
+            const auto [begin, end, capacity_end, extent] = child;
+            const auto to_left = static_cast<uint32_t>((capacity_end - end) * uint64_t{mid - begin} / (end - begin));
+            if (to_left > 0) std::move_backward(prims_.begin() + mid, prims_.begin() + end, prims_.begin() + end + to_left);
+            return to_left;
+        }
     }
 
     // Moves the primitives left of the split to the front (in std::partition's order), and
@@ -324,50 +384,55 @@ private:
         overlap.lo = _mm_max_ps(overlap.lo, right.lo);
         overlap.hi = _mm_min_ps(overlap.hi, right.hi);
         return _mm_movemask_ps(_mm_cmpgt_ps(overlap.lo, overlap.hi)) == 0 &&
-               overlap.half_area() > splitter_->overlap_share() * root_area_;
+               overlap.half_area() > policy_.overlap_share() * planes_.root_area;
     }
 
-    // Splits the node by the splitter's best plane if that costs less than `object_cost` and
+    // Splits the node by the policy's best plane if that costs less than `object_cost` and
     // the free slots hold the references it adds; returns whether it did.
     bool split_by_plane(uint32_t node, const Child& child, int depth, float object_cost) {
         const auto [begin, end, capacity_end, extent] = child;
-        boxes_.clear();
-        prim_ids_.clear();
+        std::vector<Bounds3>& boxes = planes_.boxes;
+        boxes.clear();
+        planes_.prims.clear();
         for (uint32_t i = begin; i < end; ++i) {
-            boxes_.push_back(prims_[i].box.to_bounds());
-            prim_ids_.push_back(prims_[i].index);
+            boxes.push_back(prims_[i].box.to_bounds());
+            planes_.prims.push_back(prims_[i].index);
         }
         SplitPlane plane;
-        if (!(splitter_->best_plane(boxes_, prim_ids_, extent.bounds.to_bounds(), plane) < object_cost)) return false;
-        left_.clear();
-        right_.clear();
+        if (!(policy_.best_plane(boxes, planes_.prims, extent.bounds.to_bounds(), plane) < object_cost)) return false;
+        std::vector<BuildPrim>& left = planes_.left;
+        std::vector<BuildPrim>& right = planes_.right;
+        left.clear();
+        right.clear();
         for (uint32_t i = begin; i < end; ++i) {
             const BuildPrim& p = prims_[i];
-            const Bounds3& box = boxes_[i - begin];
+            const Bounds3& box = boxes[i - begin];
             if (box.hi[plane.axis] <= plane.position) {
-                left_.push_back(p);
+                left.push_back(p);
             } else if (box.lo[plane.axis] >= plane.position) {
-                right_.push_back(p);
+                right.push_back(p);
             } else {
                 Bounds3 below = box, above = box;
                 below.hi[plane.axis] = above.lo[plane.axis] = plane.position;
-                add_part(left_, p.index, below);
-                add_part(right_, p.index, above);
+                add_part(left, p.index, below);
+                add_part(right, p.index, above);
             }
         }
         return place_sides(node, child, depth);
     }
 
-    // Stores left_ and right_ as the node's children, sharing its free slots out between them;
+    // Stores the plane's sides as the node's children, sharing its free slots out between them;
     // false if they do not fit or one is empty.
     bool place_sides(uint32_t node, const Child& child, int depth) {
         const uint32_t begin = child.begin, capacity_end = child.capacity_end;
-        const auto n_left = static_cast<uint32_t>(left_.size()), n_right = static_cast<uint32_t>(right_.size());
+        const std::vector<BuildPrim>& left = planes_.left;
+        const std::vector<BuildPrim>& right = planes_.right;
+        const auto n_left = static_cast<uint32_t>(left.size()), n_right = static_cast<uint32_t>(right.size());
         if (n_left == 0 || n_right == 0 || n_left + n_right > capacity_end - begin) return false;
         const auto to_left = static_cast<uint32_t>((capacity_end - begin - n_left - n_right) * uint64_t{n_left} / (n_left + n_right));
         const uint32_t right_begin = begin + n_left + to_left;
-        std::copy(left_.begin(), left_.end(), prims_.begin() + begin);
-        std::copy(right_.begin(), right_.end(), prims_.begin() + right_begin);
+        std::copy(left.begin(), left.end(), prims_.begin() + begin);
+        std::copy(right.begin(), right.end(), prims_.begin() + right_begin);
         split_node(node, {begin, begin + n_left, right_begin, extent_of(begin, begin + n_left)},
                    {right_begin, right_begin + n_right, capacity_end, extent_of(right_begin, right_begin + n_right)}, depth);
         return true;
@@ -375,7 +440,7 @@ private:
 
     // Adds a reference to the part of primitive `prim` inside `box`, if there is one.
     void add_part(std::vector<BuildPrim>& side, uint32_t prim, const Bounds3& box) const {
-        const Bounds3 part = splitter_->part(prim, box);
+        const Bounds3 part = policy_.part(prim, box);
         if (!part.empty()) side.push_back({SseBox::enclosing(part), prim, {}});
     }
 
@@ -391,7 +456,7 @@ private:
         std::array<uint32_t, 4> counts;  // lane 3 is 0
         __m128i count() const { return _mm_load_si128(reinterpret_cast<const __m128i*>(counts.data())); }
     };
-    using Bins = std::array<Bin, kBins>;
+    using Bins = std::array<Bin, sah::kBins>;
 
     // The primitives fill the bins of all three axes and note their bins; the cost is the
     // unnormalised SAH sum. Block by block, the bins are found first and filled after: neighbours
@@ -408,8 +473,8 @@ private:
         }
         // The low byte of each lane, packed into one word.
         const __m128i low_bytes = _mm_setr_epi8(0, 4, 8, 12, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1);
-        for (uint32_t block = begin; block < end; block += kBinningBlock) {
-            const uint32_t block_end = std::min(end, block + kBinningBlock);
+        for (uint32_t block = begin; block < end; block += sah::kBinningBlock) {
+            const uint32_t block_end = std::min(end, block + sah::kBinningBlock);
             for (uint32_t i = block; i < block_end; ++i) {
                 BuildPrim& p = prims_[i];
                 const auto word = static_cast<uint32_t>(_mm_cvtsi128_si32(_mm_shuffle_epi8(binning.bins(p.box), low_bytes)));
@@ -440,7 +505,7 @@ private:
     // axes in the lanes of one register. Ties go to the lower axis, then to the lower bin.
     static Split best_split(const Bins& bins, const Binning& binning, uint32_t total) {
         const int bin_count = binning.count();
-        alignas(16) std::array<std::array<float, 4>, kBins> right_cost;
+        alignas(16) std::array<std::array<float, 4>, sah::kBins> right_cost;
         std::array<SseBox, 3> acc;
         __m128i n = _mm_setzero_si128();
         for (int b = bin_count - 1; b > 0; --b) {
@@ -492,36 +557,42 @@ private:
         return mid;
     }
 
+    // What splits by planes keep: the root's area for the overlap test, and a node's
+    // references and a plane's sides, before they are stored. Nothing for a policy without them.
+    struct PlaneState {
+        float root_area = 0;
+        std::vector<Bounds3> boxes;
+        std::vector<uint32_t> prims;
+        std::vector<BuildPrim> left, right;
+    };
+    struct NoPlanes {};
+
     std::vector<BuildPrim>& prims_;
-    const ReferenceSplitter* splitter_;
-    const float traversal_cost_;  // of one step down, relative to one primitive test
-    float root_area_ = 0;
-    std::vector<BuildPrim> left_, right_;  // a split by a plane: its children, before they are stored
-    std::vector<Bounds3> boxes_;           // and the node's references, for the splitter
-    std::vector<uint32_t> prim_ids_;
+    const Policy& policy_;
+    [[no_unique_address]] std::conditional_t<kPlanes, PlaneState, NoPlanes> planes_;
     std::vector<BinaryNode>* nodes_;
     uint32_t largest_task_ = 0;  // subtrees of at most this many primitives are left as tasks
     std::vector<Task> tasks_;
 };
 
-}  // namespace
 
-BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const ReferenceSplitter* splitter,
-                          const SahBuildConfig& config) {
-    std::vector<BuildPrim> prims;
+// build_sah_tree with `policy`: primitives with empty boxes are left out.
+template <typename Policy>
+BinaryTree build_sah_tree(std::span<const Bounds3> prim_bounds, const Policy& policy, const SahBuildConfig& config = {}) {
+    std::vector<sah::BuildPrim> prims;
     prims.reserve(prim_bounds.size());
     for (uint32_t i = 0; i < prim_bounds.size(); ++i) {
         if (prim_bounds[i].empty()) continue;
         // Field by field: built whole, the primitive goes through the stack, where loading its
         // index and bins as one 16-byte word waits for their narrower stores (a failed store
         // forwarding, in the loop over every primitive).
-        BuildPrim& p = prims.emplace_back();
-        p.box = SseBox::enclosing(prim_bounds[i]);
+        sah::BuildPrim& p = prims.emplace_back();
+        p.box = sah::SseBox::enclosing(prim_bounds[i]);
         p.index = i;
     }
     if (prims.empty()) return {};
     std::vector<BinaryNode> nodes;
-    return Builder(prims, splitter, nodes).run(config);
+    return SahBuilder<Policy>(prims, policy, nodes).run(config);
 }
 
 }  // namespace glint
