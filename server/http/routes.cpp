@@ -78,8 +78,10 @@ const char* method_name(Method method) {
     return "";
 }
 
+// A path's dots are literal ("image.png" is not "image_png"); then the placeholders' patterns.
 std::string path_pattern(const Route& route) {
-    std::string pattern = route.path;
+    std::string pattern;
+    for (const char c : route.path) pattern += c == '.' ? std::string("\\.") : std::string(1, c);
     for (const auto& [placeholder, matches] : kPlaceholders)
         pattern = replaced(std::move(pattern), placeholder, matches);
     return pattern;

@@ -56,7 +56,7 @@ struct StatusUrl {
 struct Route {
     Method method;  // a GET route serves HEAD too, as cpp-httplib routes it
     // As README's API table writes it: {id} stands for a job's id, {name} for a preset's and
-    // {file} for any path of the page's; the rest is matched as a regex, as cpp-httplib does.
+    // {file} for any path of the page's; the rest is matched as it is written (a dot is a dot).
     std::string path;
     TokenPolicy token;
     StatusUrl url;

@@ -84,6 +84,7 @@ TEST(Routes, TheTokenCheckReadsThePolicyOfTheRouteThatServesTheRequest) {
     EXPECT_TRUE(token_in_query_allowed(request("HEAD", job + "/image.png")));
     EXPECT_FALSE(token_in_query_allowed(request("POST", job + "/image.png")));
     EXPECT_FALSE(token_in_query_allowed(request("GET", "/jobs/nope/image.png")));  // the page's path
+    EXPECT_EQ(find_route("GET", job + "/image_png"), &routes().back());  // a dot is a dot: the page's too
 }
 
 TEST(Routes, ReadmesApiTableDocumentsEveryRoute) {
