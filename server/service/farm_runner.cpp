@@ -2,8 +2,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include "service/errors.h"
-
 namespace glint {
 
 Progress FarmRunner::progress() const {

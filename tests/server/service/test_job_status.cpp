@@ -2,8 +2,6 @@
 // without a samples picture does not replace.
 #include <gtest/gtest.h>
 
-#include <thread>
-
 #include "service/job_status.h"
 
 namespace glint {
@@ -96,18 +94,6 @@ TEST(JobStatus, AFailureDropsThePictures) {
     EXPECT_EQ(s.error, "broken");
     EXPECT_FALSE(s.png);
     EXPECT_EQ(s.frame, 2u);
-}
-
-TEST(JobStatus, AWatcherWakesForTheNextFrame) {
-    JobStatus status(Progress{});
-    ASSERT_TRUE(status.start());
-    std::thread publisher([&] {
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-        status.publish(frame_with_png(5), JobState::running, {});
-    });
-    const JobSnapshot s = status.wait(0, std::chrono::seconds(30));
-    publisher.join();
-    EXPECT_EQ(s.frame, 1u);
 }
 
 }  // namespace
