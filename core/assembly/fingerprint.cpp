@@ -68,7 +68,9 @@ uint64_t fingerprint(const Scene& scene, const RenderSettings& settings) {
     h.value(in.max_depth);
     h.value(in.rr_depth);
     h.value(in.direct_view_rays);
-    h.value(Strategies(scene).light_tracing());
+    const Strategies strategies(scene);
+    h.value(strategies.light_tracing());
+    h.value(strategies.guiding());
     const Geometry& g = scene.geometry();
     h.value(g.accelerator());  // the accelerators may break exact ties between equal hits differently
     for (uint32_t prim = 0; prim < g.primitive_count(); ++prim) {

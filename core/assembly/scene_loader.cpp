@@ -236,7 +236,8 @@ private:
     }
 
     static IntegratorSettings parse_integrator(const At& at) {
-        at.expect_object({"light_sampling", "light_tracing", "max_depth", "rr_depth", "accelerator", "direct_view_rays"});
+        at.expect_object(
+            {"light_sampling", "light_tracing", "max_depth", "rr_depth", "accelerator", "direct_view_rays", "guiding"});
         IntegratorSettings s;
         if (at.has("light_sampling")) s.light_sampling = at["light_sampling"].boolean();
         if (at.has("max_depth")) s.max_depth = int(at["max_depth"].integer(1, 100000));
@@ -246,11 +247,16 @@ private:
             const std::string a = at["accelerator"].choice({"auto", "bvh", "list"});
             s.accelerator = a == "auto" ? Accelerator::automatic : a == "bvh" ? Accelerator::bvh : Accelerator::list;
         }
-        if (at.has("light_tracing")) {
-            const std::string t = at["light_tracing"].choice({"auto", "on", "off"});
-            s.light_tracing = t == "auto" ? LightTracing::automatic : t == "on" ? LightTracing::on : LightTracing::off;
-        }
+        if (at.has("light_tracing")) s.light_tracing = automatic_on_off<LightTracing>(at["light_tracing"]);
+        if (at.has("guiding")) s.guiding = automatic_on_off<Guiding>(at["guiding"]);
         return s;
+    }
+
+    // "auto", "on" or "off", as an enum with those three values.
+    template <class Choice>
+    static Choice automatic_on_off(const At& at) {
+        const std::string t = at.choice({"auto", "on", "off"});
+        return t == "auto" ? Choice::automatic : t == "on" ? Choice::on : Choice::off;
     }
 
     void parse_objects(const At& at) {

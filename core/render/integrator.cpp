@@ -3,6 +3,8 @@
 #include "base/sampling.h"
 #include "render/mis.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace glint {
@@ -42,9 +44,44 @@ bool survives_roulette(Rgb& value, double threshold, Rng& rng) {
     return true;
 }
 
+// The bounces of a path that trains the guide, each told at the end the radiance the path
+// brought back along it: what the path gathered after it, over the path's throughput there.
+class TrainingRecords {
+public:
+    explicit TrainingRecords(PathGuide* guide) : guide_(guide) {}
+
+    void add(const Vec3& p, const BsdfSample& bs, const Rgb& throughput, const Rgb& gathered) {
+        if (!guide_ || bs.is_specular() || !(bs.pdf > 0) || count_ == kMaxRecords) return;
+        records_[count_++] = {p, bs.wi, bs.pdf, throughput, gathered};
+    }
+    void finish(const Rgb& gathered) const {
+        for (int i = 0; i < count_; ++i) {
+            const Record& r = records_[i];
+            const Rgb since = gathered - r.gathered;
+            const Rgb radiance{share(since.x, r.throughput.x), share(since.y, r.throughput.y),
+                               share(since.z, r.throughput.z)};
+            const double amount = luminance(radiance) / r.pdf;
+            if (std::isfinite(amount)) guide_->record(r.p, r.wi, std::max(amount, 0.0));
+        }
+    }
+
+private:
+    static double share(double value, double throughput) { return throughput > 0 ? value / throughput : 0; }
+    // Deeper bounces carry little and are not recorded.
+    static constexpr int kMaxRecords = 16;
+    struct Record {
+        Vec3 p, wi;
+        double pdf;
+        Rgb throughput, gathered;
+    };
+    PathGuide* guide_;
+    int count_ = 0;
+    Record records_[kMaxRecords];
+};
+
 }  // namespace
 
-Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const Bsdf& bsdf, const Rgb& beta,
+Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const GuidedBsdf& bsdf, const Rgb& beta,
                              double u1, double u2, Rng& rng) const {
     LightSample ls;
     const Vec3 facing = dot(d, si.n) < 0 ? si.n : -si.n;
@@ -60,7 +97,7 @@ Rgb PathTracer::direct_light(const SurfaceInteraction& si, const Vec3& d, const 
     return value;
 }
 
-Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Bsdf& bsdf, const Rgb& beta,
+Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const GuidedBsdf& bsdf, const Rgb& beta,
                         const LightVertex& y, Rng& rng) const {
     const Vec3 to_y = y.si.p - x.p;
     const double distance2 = dot(to_y, to_y);
@@ -82,7 +119,7 @@ Rgb PathTracer::connect(const SurfaceInteraction& x, const Vec3& d, const Bsdf& 
     return value;
 }
 
-Rgb PathTracer::through_caster(const SurfaceInteraction& x, const Vec3& d, const Bsdf& bsdf, const Rgb& beta,
+Rgb PathTracer::through_caster(const SurfaceInteraction& x, const Vec3& d, const GuidedBsdf& bsdf, const Rgb& beta,
                                Rng& rng) const {
     const double u_pick = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     Vec3 wi;
@@ -131,11 +168,12 @@ Rgb PathTracer::emission_at(const Ray& ray, const Hit& hit) const {
 }
 
 Rgb PathTracer::radiance(Ray ray, Rng& rng, const LightPath& light, const FirstVertexSamples* first,
-                         DirectView direct, Aov* aov) const {
+                         DirectView direct, Aov* aov, PathGuide* training) const {
     PathState path;
     path.ray = ray;
     path.first = first;
     path.direct_view = direct;
+    path.training = training;
     if (aov) *aov = Aov{};
     return trace(path, rng, light, aov);
 }
@@ -213,7 +251,7 @@ double PathTracer::found_light_weight(const PathState& path, const SurfaceIntera
     return 1;
 }
 
-void PathTracer::gather_at_vertex(PathState& path, const SurfaceInteraction& si, const Bsdf& bsdf, VertexKind kind,
+void PathTracer::gather_at_vertex(PathState& path, const SurfaceInteraction& si, const GuidedBsdf& bsdf, VertexKind kind,
                                   const FirstVertexSamples* first, const LightPath& light, bool nee, Rng& rng,
                                   Rgb& result) const {
     const Ray& ray = path.ray;
@@ -248,6 +286,7 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov
     const IntegratorSettings& settings = scene_.integrator();
     const bool nee = settings.light_sampling && !scene_.lights().empty();
     Rgb result{0};
+    TrainingRecords records(path.training);
     Material scratch;  // the material at a textured surface's point
     for (;;) {
         const Ray& ray = path.ray;
@@ -267,6 +306,7 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov
         const SurfaceInteraction si = scene_.interaction(ray, hit);
         const Material& m = scene_.material_at(si, scratch);
         const Bsdf bsdf(m, si, -ray.d);
+        const GuidedBsdf vertex(bsdf, specular || !guide_ ? nullptr : guide_->at(si.p), guide_mixture_);
         if (aov) aov = note_aov(aov, path, hit.t, si, bsdf, specular);
         // Caustic paths that light tracing covers are its alone (mis.h).
         const bool traced_from_light = strategies_.light_tracing() && path.shape == PathShape::caustic &&
@@ -275,17 +315,19 @@ Rgb PathTracer::trace(PathState path, Rng& rng, const LightPath& light, Aov* aov
             result += path.throughput * m.emission * found_light_weight(path, si, nee);
         if (path.depth + 1 >= settings.max_depth) break;
         const FirstVertexSamples* first = specular ? nullptr : std::exchange(path.first, nullptr);
-        if (!specular) gather_at_vertex(path, si, bsdf, kind, first, light, nee, rng, result);
+        if (!specular) gather_at_vertex(path, si, vertex, kind, first, light, nee, rng, result);
         BsdfSample bs, reflected;
         if (specular && path.depth < kSplitDepth && flags.has(BsdfFlags::transmission) &&
             bsdf.split(-ray.d, reflected, bs)) {
             PathState branch = path;  // with the same stratified numbers for its first diffuse vertex
             if (extend_path(branch, si, kind, reflected, rng)) result += trace(branch, rng, light);
         } else {
-            bs = bsdf.sample(-ray.d, rng, first ? first->bounce : nullptr);
+            bs = vertex.sample(-ray.d, rng, first ? first->bounce : nullptr);
         }
         if (!extend_path(path, si, kind, bs, rng)) break;
+        if (!specular) records.add(si.p, bs, path.throughput, result);
     }
+    records.finish(result);
     return result;
 }
 

@@ -12,7 +12,9 @@
 
 #include "scene/camera.h"
 #include "render/aov.h"
+#include "render/guided_bsdf.h"
 #include "render/light_tracer.h"
+#include "render/path_guide.h"
 #include "base/rng.h"
 #include "render/sampler.h"
 #include "render/strategies.h"
@@ -49,14 +51,21 @@ public:
     PathTracer(const Scene& scene, const Camera& camera) : scene_(scene), camera_(camera), strategies_(scene) {}
 
     const Strategies& strategies() const { return strategies_; }
+    // The guide whose learned distributions draw the bounces at non-specular vertices
+    // (guided_bsdf.h); nullptr: the BSDF alone draws them.
+    void set_guide(const PathGuide* guide) {
+        guide_ = guide;
+        guide_mixture_ = guide ? guide->config().mixture : 0;
+    }
 
     // Radiance arriving along the camera ray, estimated with random numbers from rng; `light`
     // is this sample's light path (empty when the scene has no light tracing); `first`, if
     // given, the numbers the path's first non-specular vertex uses instead of rng's; `direct` how
     // the path treats what the camera sees through specular vertices only; `aov`, if given,
-    // receives the path's features (aov.h; where glass splits the path, the refracted branch's).
+    // receives the path's features (aov.h; where glass splits the path, the refracted branch's);
+    // `training`, if given, the radiance the path brings back to each of its guided bounces.
     Rgb radiance(Ray ray, Rng& rng, const LightPath& light = kNoLightPath, const FirstVertexSamples* first = nullptr,
-                 DirectView direct = DirectView::gathered, Aov* aov = nullptr) const;
+                 DirectView direct = DirectView::gathered, Aov* aov = nullptr, PathGuide* training = nullptr) const;
 
 private:
     // Where a path is: its next ray, what it carries, the vertex it leaves and how it got there.
@@ -84,6 +93,7 @@ private:
         double caster_pdf = 0, caster_bsdf_pdf = 0;
         int caster_bounces = 0;
         DirectView direct_view = DirectView::gathered;
+        PathGuide* training = nullptr;
         bool seen_directly = true;  // no non-specular vertex yet: what the path finds belongs to the direct view
         // Whether light found now counts: the direct view's share depends on the path's part.
         bool counts_found_light() const { return !(seen_directly && direct_view == DirectView::left_out); }
@@ -114,17 +124,17 @@ private:
     // Light arriving from one sampled light point at si (reached along d with throughput beta),
     // times f·cos, MIS-weighted against BSDF sampling.
     // (u1, u2) pick the point on the light.
-    Rgb direct_light(const SurfaceInteraction& si, const Vec3& d, const Bsdf& bsdf, const Rgb& beta, double u1,
+    Rgb direct_light(const SurfaceInteraction& si, const Vec3& d, const GuidedBsdf& bsdf, const Rgb& beta, double u1,
                      double u2, Rng& rng) const;
     // Light reaching diffuse vertex x (reached along d with throughput beta) through a mirror
     // or glass sphere picked by the CasterSampler, times f·cos, MIS-weighted against
     // the bounce: the chain of specular vertices is followed as the path tracer would (Fresnel
     // picks at random), for at most kMaxCasterBounces vertices.
-    Rgb through_caster(const SurfaceInteraction& x, const Vec3& d, const Bsdf& bsdf, const Rgb& beta, Rng& rng) const;
+    Rgb through_caster(const SurfaceInteraction& x, const Vec3& d, const GuidedBsdf& bsdf, const Rgb& beta, Rng& rng) const;
     static constexpr int kMaxCasterBounces = 8;
     // What reaches the eye through diffuse vertex x (reached along d with throughput beta)
     // from light vertex y, MIS-weighted against the path tracer's bounces.
-    Rgb connect(const SurfaceInteraction& x, const Vec3& d, const Bsdf& bsdf, const Rgb& beta, const LightVertex& y,
+    Rgb connect(const SurfaceInteraction& x, const Vec3& d, const GuidedBsdf& bsdf, const Rgb& beta, const LightVertex& y,
                 Rng& rng) const;
     // The weight of emission found through specular vertices after a diffuse vertex, against
     // the light path that could also have found it; `density_over_pi` belongs to that light
@@ -145,13 +155,15 @@ private:
     // (with `first`'s numbers, if given), and at a diffuse vertex the connections to the light
     // path's vertices and the light through casters; also notes where the path stands in a
     // light path's chain.
-    void gather_at_vertex(PathState& path, const SurfaceInteraction& si, const Bsdf& bsdf, VertexKind kind,
+    void gather_at_vertex(PathState& path, const SurfaceInteraction& si, const GuidedBsdf& bsdf, VertexKind kind,
                           const FirstVertexSamples* first, const LightPath& light, bool nee, Rng& rng,
                           Rgb& result) const;
 
     const Scene& scene_;
     const Camera& camera_;
     Strategies strategies_;
+    const PathGuide* guide_ = nullptr;
+    double guide_mixture_ = 0;
 };
 
 }  // namespace glint

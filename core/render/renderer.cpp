@@ -41,6 +41,47 @@ RenderJob::RenderJob(std::shared_ptr<const Scene> scene, const RenderSettings& s
         throw std::invalid_argument("the first sample must be a multiple of " + std::to_string(round));
     if (settings_.adaptive.on()) adaptive_.emplace(settings_.adaptive, settings_.spp, film_.width(), film_.height());
     counts_light_paths_ = adaptive_ && tracer_.strategies().light_tracing() && !settings_.whole_image();
+    if (tracer_.strategies().guiding() && guide_iterations(GuideConfig{}, job_spp()) > 0)
+        guide_.emplace(scene_->geometry().bounds());
+}
+
+uint32_t RenderJob::job_spp() const {
+    const uint32_t round = samples_per_round(settings_.filter);
+    const uint32_t spp = settings_.adaptive.job_spp ? settings_.adaptive.job_spp : settings_.spp;
+    return (spp + round - 1) / round * round;
+}
+
+bool RenderJob::train_guide(ThreadPool& pool) {
+    tracer_.set_guide(&*guide_);
+    const int iterations = guide_iterations(guide_->config(), job_spp());
+    for (int k = 0; k < iterations; ++k) {
+        const uint32_t first = (uint32_t(1) << k) - 1, last = (uint32_t(2) << k) - 1;
+        pool.parallel_for(size_t(settings_.height), [&](size_t row) {
+            if (should_stop()) return;
+            for (int x = 0; x < settings_.width; ++x) train_pixel(x, int(row), first, last);
+        }, &weight_);
+        if (should_stop()) {  // what the iteration recorded is incomplete
+            guide_.emplace(scene_->geometry().bounds());
+            return false;
+        }
+        guide_->learn(uint64_t(settings_.width) * uint64_t(settings_.height) * (last - first));
+    }
+    guide_trained_ = true;
+    return true;
+}
+
+void RenderJob::train_pixel(int x, int y, uint32_t first, uint32_t last) {
+    const uint64_t pixel = uint64_t(y) * settings_.width + x;
+    for (uint32_t index = first; index < last; ++index) {
+        Rng rng = guide_training_stream(settings_.seed, pixel, index);
+        const Ray ray = camera_ray(x, y, index, nullptr, rng);
+        tracer_.radiance(ray, rng, kNoLightPath, nullptr, DirectView::gathered, nullptr, &*guide_);
+    }
+}
+
+std::optional<GuideStats> RenderJob::guide_stats() const {
+    if (!guide_trained_) return std::nullopt;
+    return guide_->stats();
 }
 
 Ray RenderJob::camera_ray(int x, int y, uint32_t index, const double* film, Rng& rng) const {
@@ -145,6 +186,7 @@ void RenderJob::trace_light_paths(int x, int y, uint32_t first, uint32_t last) c
 }
 
 bool RenderJob::render_pass(ThreadPool& pool, uint32_t first, uint32_t last) {
+    if (guide_ && !guide_trained_ && !train_guide(pool)) return false;
     if (direct_view_.active() && !direct_view_decided_) {
         pool.parallel_for(size_t(tiles_x_) * tiles_y_, [&](size_t tile) {
             const Region in = intersection(tile_pixels(tile), settings_.window());

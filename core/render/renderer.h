@@ -16,6 +16,7 @@
 #include "render/filter.h"
 #include "render/integrator.h"
 #include "render/light_tracer.h"
+#include "render/path_guide.h"
 #include "render/sampler.h"
 #include "render/settings.h"
 #include "base/thread_pool.h"
@@ -67,6 +68,8 @@ public:
     bool render_pass(ThreadPool& pool, uint32_t first, uint32_t last);
 
     const Film& film() const { return film_; }
+    // The path guide's size once trained (guiding on, and a job long enough to train it).
+    std::optional<GuideStats> guide_stats() const;
     const RenderSettings& settings() const { return settings_; }
     Progress progress() const;
 
@@ -106,6 +109,14 @@ private:
     bool takes_camera_samples(int x, int y, const Region& window) const;
     // Before each pass: the adaptive mask from the film (passes then start at its checks).
     void start_pass();
+    // Trains the path guide before the film's first sample, from paths of its own: iteration k
+    // traces paths [2^k - 1, 2^(k+1) - 1) of every pixel of the image, whatever the window, so
+    // every part of a job, a resumed job and a region job learn the guide a whole render learns.
+    // False if the job was stopped first; the guide then starts again at the next pass.
+    bool train_guide(ThreadPool& pool);
+    void train_pixel(int x, int y, uint32_t first, uint32_t last);
+    // The whole job's samples per pixel (the training's budget): a part's job's, or spp.
+    uint32_t job_spp() const;
 
     std::shared_ptr<const Scene> scene_;
     RenderSettings settings_;
@@ -115,6 +126,8 @@ private:
     LightTracer light_tracer_;
     DirectViewSplit direct_view_;
     std::optional<AdaptiveMask> adaptive_;  // when settings_.adaptive.on()
+    std::optional<PathGuide> guide_;        // when guiding is on and the job trains it
+    bool guide_trained_ = false;
     // Light paths are traced apart from camera samples, and counted in the film: an adaptive
     // region job with light tracing. Every light path is an independent path from the lights,
     // whichever pixel's stream it draws from, so the splats need only be divided by the light

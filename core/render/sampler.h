@@ -68,6 +68,8 @@ inline constexpr uint32_t kWholePixel = 0xFF;
 // Set in the sample index of a camera sample's light path (light_tracer.h): an index is 32 bits,
 // so its stream is never a camera sample's.
 inline constexpr uint64_t kLightPath = uint64_t(1) << 63;
+// Set in the index of a path guide's training path (path_guide.h), apart from both.
+inline constexpr uint64_t kGuideTraining = uint64_t(1) << 62;
 // The direct view's probes (direct_view.h) take seed 0, not the job's: which pixels split must
 // not depend on the seed, so that the parts of a job rendered apart decide alike.
 inline constexpr uint64_t kProbeSeed = 0;
@@ -79,6 +81,10 @@ inline Rng camera_stream(uint64_t seed, uint64_t pixel, uint32_t index) { return
 // The stream of that sample's light path.
 inline Rng light_path_stream(uint64_t seed, uint64_t pixel, uint32_t index) {
     return Rng(seed, pixel, uint64_t(index) | sample_keys::kLightPath);
+}
+// The stream of training path `index` of pixel `pixel` for the path guide.
+inline Rng guide_training_stream(uint64_t seed, uint64_t pixel, uint32_t index) {
+    return Rng(seed, pixel, uint64_t(index) | sample_keys::kGuideTraining);
 }
 // The stream of the direct view's probe number `probe` on the job's probe grid.
 inline Rng probe_stream(uint64_t probe) { return Rng(sample_keys::kProbeSeed, probe, 0); }

@@ -20,10 +20,13 @@ public:
     // With light tracing: the mirror and glass spheres, sampled from the diffuse points the
     // camera sees only through specular vertices (where light tracing cannot reach).
     const CasterSampler& casters() const { return casters_; }
+    // Whether path guiding draws the bounces at non-specular vertices (path_guide.h).
+    bool guiding() const { return guiding_; }
 
 private:
     CausticEmitter caustic_emitter_;
     CasterSampler casters_;
+    bool guiding_ = false;
 };
 
 }  // namespace glint

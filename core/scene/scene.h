@@ -18,6 +18,7 @@ namespace glint {
 // Light tracing of caustics (see light_tracer.h). automatic: on when the scene has what it
 // needs and pays for: a pinhole camera, a sphere light and a mirror or glass sphere it can reach.
 enum class LightTracing { automatic, on, off };
+enum class Guiding { automatic, on, off };
 
 struct IntegratorSettings {
     bool light_sampling = true;  // next-event estimation with MIS; off gives smallpt's estimator
@@ -28,6 +29,8 @@ struct IntegratorSettings {
     // Extra camera rays per sample for the direct view where it varies across a pixel
     // (direct_view.h); 0: the camera path always gathers it, as smallpt's does.
     int direct_view_rays = 8;
+    // Path guiding (render/path_guide.h); automatic: where it pays (render/strategies.h).
+    Guiding guiding = Guiding::automatic;
 };
 
 // The scene's surfaces: its primitives (spheres first, then triangles, as Geometry numbers them),

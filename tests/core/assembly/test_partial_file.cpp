@@ -13,6 +13,7 @@ namespace {
 
 // Renders samples [first, end) and returns them as a partial file's bytes.
 std::vector<uint8_t> render_part(LoadedScene s, uint32_t first, uint32_t end) {
+    s.settings.adaptive.job_spp = s.settings.spp;  // as `glint render --samples` sets it
     s.settings.first_sample = first;
     s.settings.spp = end - first;
     const auto job = testing::render(s);
