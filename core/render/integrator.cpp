@@ -4,7 +4,9 @@
 #include "render/mis.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 namespace glint {
@@ -48,15 +50,17 @@ bool survives_roulette(Rgb& value, double threshold, Rng& rng) {
 // brought back along it: what the path gathered after it, over the path's throughput there.
 class TrainingRecords {
 public:
-    explicit TrainingRecords(PathGuide* guide) : guide_(guide) {}
+    explicit TrainingRecords(PathGuide* guide) : guide_(guide) {
+        if (guide) records_.emplace();
+    }
 
     void add(const Vec3& p, const BsdfSample& bs, const Rgb& throughput, const Rgb& gathered) {
         if (!guide_ || bs.is_specular() || !(bs.pdf > 0) || count_ == kMaxRecords) return;
-        records_[count_++] = {p, bs.wi, bs.pdf, throughput, gathered};
+        (*records_)[count_++] = {p, bs.wi, bs.pdf, throughput, gathered};
     }
     void finish(const Rgb& gathered) const {
         for (int i = 0; i < count_; ++i) {
-            const Record& r = records_[i];
+            const Record& r = (*records_)[i];
             const Rgb since = gathered - r.gathered;
             const Rgb radiance{share(since.x, r.throughput.x), share(since.y, r.throughput.y),
                                share(since.z, r.throughput.z)};
@@ -76,7 +80,8 @@ private:
     };
     PathGuide* guide_;
     int count_ = 0;
-    Record records_[kMaxRecords];
+    // Made only for a training path: every other path would zero them at each trace().
+    std::optional<std::array<Record, kMaxRecords>> records_;
 };
 
 }  // namespace

@@ -24,7 +24,7 @@ struct GuideConfig {
     double spatial_threshold = 12000;     // Müller et al.'s c, per 10⁶ paths of an iteration
     double directional_threshold = 0.01;  // Müller et al.'s ρ
     int max_directional_depth = 20;
-    size_t max_leaves = size_t(1) << 14;  // bounds the memory: a leaf is at most ~50 KB
+    size_t max_leaves = size_t(1) << 14;  // bounds the spatial tree, and so the memory
     // Training iterations trace 1, 2, 4, ... paths per pixel of the image; as many iterations
     // as fit in training_share of the job's samples, at most max_iterations.
     double training_share = 0.125;
